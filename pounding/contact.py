@@ -1,0 +1,163 @@
+"""Impact laws between the colliding floors (Eq. 3-6).
+
+delta = x1 - x2 - gap is the penetration (positive in contact) and delta_dot
+its rate; the force pushes building 1 back and building 2 forward (Eq. 10).
+
+Models, selected by name:
+
+``jankowski``
+    Nonlinear viscoelastic (Jankowski 2005), Eq. 3-5: F = beta delta^1.5 +
+    c(delta) delta_dot while approaching, beta delta^1.5 while restoring, with
+    c = 2 xi sqrt(beta sqrt(delta) m1 m2 / (m1 + m2)). Eq. 4 as printed has
+    sqrt(beta delta ...), which is not dimensionally consistent (NOTES.md 1b);
+    Jankowski's own law, and OpenSees' ``JankowskiImpact``, use sqrt(delta).
+``hertz``
+    Elastic Hertz law F = beta delta^1.5 (no energy loss; ``restitution`` unused).
+``hertzdamp``
+    Muthukumar & DesRoches (2006): F = beta delta^1.5 (1 + 3 (1 - e^2) / (4 v0) delta_dot)
+    with v0 the approach velocity at the onset of the impact.
+``linear``
+    Linear viscoelastic (Anagnostopoulos 1988): F = k delta + c delta_dot with
+    c = 2 xi sqrt(k m1 m2 / (m1 + m2)), xi = -ln e / sqrt(pi^2 + ln^2 e); the
+    force is not allowed to pull (F >= 0). ``stiffness`` is then in [N/m].
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from numba import njit
+
+from .errors import CaseError
+
+__all__ = [
+    "Contact",
+    "CONTACT_MODELS",
+    "jankowski_damping_ratio",
+    "linear_damping_ratio",
+    "contact_force",
+    "hertz_peak_penetration",
+]
+
+CONTACT_MODELS = ("jankowski", "hertz", "hertzdamp", "linear")
+"""Names of the contact laws; their index is the code the integrator uses."""
+
+JANKOWSKI, HERTZ, HERTZDAMP, LINEAR = range(4)
+
+
+def jankowski_damping_ratio(restitution: float) -> float:
+    """Impact damping ratio xi of the nonlinear viscoelastic law, Eq. 5 [-]."""
+    e = restitution
+    return 9.0 * math.sqrt(5.0) / 2.0 * (1.0 - e * e) / (e * (e * (9.0 * math.pi - 16.0) + 16.0))
+
+
+def linear_damping_ratio(restitution: float) -> float:
+    """Damping ratio of the linear viscoelastic law for restitution e [-]."""
+    log_e = math.log(restitution)
+    return -log_e / math.sqrt(math.pi**2 + log_e**2)
+
+
+def hertz_peak_penetration(approach_velocity: float, stiffness: float, reduced_mass: float) -> float:
+    """Peak penetration of an undamped Hertz impact [m], Eq. 13 with the
+    approach velocity: kinetic energy m v^2 / 2 = work 2/5 beta delta^(5/2)."""
+    return (5.0 * reduced_mass * approach_velocity**2 / (4.0 * stiffness)) ** 0.4
+
+
+@dataclass(frozen=True)
+class Contact:
+    """The impact element between one floor of each building.
+
+    Parameters
+    ----------
+    gap : float
+        Separation at rest [m], >= 0.
+    stiffness : float
+        Impact stiffness beta [N/m^1.5] (``linear``: [N/m]).
+    restitution : float
+        Coefficient of restitution e, Eq. 6 [-], 0 < e <= 1.
+    levels : tuple of int
+        Floor of building 1 and floor of building 2 that meet, counted from 1.
+    model : str
+        One of ``CONTACT_MODELS``.
+    """
+
+    gap: float
+    stiffness: float
+    restitution: float = 0.65
+    levels: tuple[int, int] = (1, 1)
+    model: str = "jankowski"
+
+    def __post_init__(self):
+        if self.model not in CONTACT_MODELS:
+            raise CaseError("model", f"unknown contact model {self.model!r}; allowed: {', '.join(CONTACT_MODELS)}")
+        for name in ("gap", "stiffness", "restitution"):
+            value = getattr(self, name)
+            if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value):
+                raise CaseError(name, f"must be a finite number, got {value!r}")
+        if self.gap < 0:
+            raise CaseError("gap", f"must be >= 0 m, got {self.gap:g}")
+        if self.stiffness <= 0:
+            raise CaseError("stiffness", f"must be > 0, got {self.stiffness:g}")
+        if not 0.0 < self.restitution <= 1.0:
+            raise CaseError("restitution", f"must lie in (0, 1], got {self.restitution:g}")
+        levels = tuple(self.levels)
+        if len(levels) != 2 or not all(isinstance(v, int) and not isinstance(v, bool) and v >= 1 for v in levels):
+            raise CaseError("levels", f"must be two floor numbers >= 1 (building 1, building 2), got {self.levels!r}")
+        object.__setattr__(self, "levels", levels)
+
+    @property
+    def model_code(self) -> int:
+        return CONTACT_MODELS.index(self.model)
+
+    @property
+    def stiffness_exponent(self) -> float:
+        """Exponent of the penetration in the elastic term: 1.5, or 1 for ``linear``."""
+        return 1.0 if self.model == "linear" else 1.5
+
+    def damping_ratio(self) -> float:
+        """The law's impact damping ratio for ``restitution`` [-]
+        (Eq. 5 for ``jankowski``; 0 for ``hertz``)."""
+        if self.model == "jankowski":
+            return jankowski_damping_ratio(self.restitution)
+        if self.model == "linear":
+            return linear_damping_ratio(self.restitution)
+        if self.model == "hertzdamp":
+            return 0.75 * (1.0 - self.restitution**2)
+        return 0.0
+
+
+@njit(cache=True, nogil=True)
+def contact_force(model, delta, delta_dot, stiffness, damping_ratio, reduced_mass, approach_velocity):
+    """Pounding force [N] for penetration ``delta`` [m] and its rate [m/s], Eq. 3.
+
+    Parameters
+    ----------
+    model : int
+        Index of the law in ``CONTACT_MODELS``.
+    delta, delta_dot : float
+        Penetration and penetration rate.
+    stiffness : float
+        beta [N/m^1.5] (``linear``: k [N/m]).
+    damping_ratio : float
+        ``Contact.damping_ratio()``.
+    reduced_mass : float
+        m1 m2 / (m1 + m2) of the colliding floors [kg].
+    approach_velocity : float
+        Penetration rate at the onset of this impact [m/s] (``hertzdamp`` only).
+    """
+    if delta <= 0.0:
+        return 0.0
+    if model == LINEAR:
+        damping = 2.0 * damping_ratio * math.sqrt(stiffness * reduced_mass)
+        return max(stiffness * delta + damping * delta_dot, 0.0)
+    elastic = stiffness * delta * math.sqrt(delta)
+    if model == JANKOWSKI:
+        if delta_dot > 0.0:
+            damping = 2.0 * damping_ratio * math.sqrt(stiffness * math.sqrt(delta) * reduced_mass)
+            return elastic + damping * delta_dot
+        return elastic
+    if model == HERTZDAMP:
+        # damping_ratio holds 3 (1 - e^2) / 4; the law divides by the approach velocity.
+        return max(elastic * (1.0 + damping_ratio * delta_dot / max(approach_velocity, 1e-12)), 0.0)
+    return elastic

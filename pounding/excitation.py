@@ -1,0 +1,271 @@
+"""Ground motion: Kanai-Tajimi / Clough-Penzien spectra, the Shinozuka-Sato
+envelope, and seeded Gaussian records by the spectral representation method.
+
+All spectra are *two-sided* power spectral densities of ground acceleration,
+[m^2/s^3], as in Eq. 7 of Rahimi & Soltani (2016): the variance of the
+acceleration is the integral of S_g over (-inf, inf).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import CaseError
+
+__all__ = [
+    "KanaiTajimi",
+    "CloughPenzien",
+    "ShinozukaSato",
+    "Excitation",
+    "record_rng",
+    "ground_acceleration",
+    "ground_accelerations",
+]
+
+
+def _positive(field: str, value: float) -> None:
+    if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+        raise CaseError(field, f"must be a finite number > 0, got {value!r}")
+
+
+def _non_negative(field: str, value: float) -> None:
+    if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
+        raise CaseError(field, f"must be a finite number >= 0, got {value!r}")
+
+
+@dataclass(frozen=True)
+class KanaiTajimi:
+    """Kanai-Tajimi spectrum, Eq. 7.
+
+    Parameters
+    ----------
+    G0 : float
+        Bedrock white-noise intensity [m^2/s^3] (two-sided).
+    omega_g : float
+        Ground (filter) frequency [rad/s].
+    xi_g : float
+        Ground damping ratio [-].
+    """
+
+    G0: float
+    omega_g: float
+    xi_g: float
+
+    def __post_init__(self):
+        _non_negative("G0", self.G0)
+        _positive("omega_g", self.omega_g)
+        _positive("xi_g", self.xi_g)
+
+    def filter_response(self, omega):
+        """|H_g(omega)|^2 of the soil filter (the fraction in Eq. 7) [-]."""
+        w2 = np.square(omega)
+        wg2 = self.omega_g**2
+        four_xi2_wg2 = 4.0 * self.xi_g**2 * wg2
+        return (wg2**2 + four_xi2_wg2 * w2) / ((wg2 - w2) ** 2 + four_xi2_wg2 * w2)
+
+    def psd(self, omega):
+        """Two-sided PSD of ground acceleration S_g(omega) [m^2/s^3], Eq. 7."""
+        return self.G0 * self.filter_response(omega)
+
+    def variance(self) -> float:
+        """Variance of ground acceleration [m^2/s^4]: the integral of Eq. 7 over all omega."""
+        return math.pi * self.G0 * self.omega_g * (1.0 + 4.0 * self.xi_g**2) / (2.0 * self.xi_g)
+
+
+@dataclass(frozen=True)
+class CloughPenzien(KanaiTajimi):
+    """Clough-Penzien spectrum: Kanai-Tajimi times a high-pass filter that
+    removes the (unphysical) finite displacement variance at low frequency.
+
+    Parameters
+    ----------
+    omega_f : float
+        High-pass corner frequency [rad/s].
+    xi_f : float
+        High-pass damping ratio [-].
+    """
+
+    omega_f: float = 2.0
+    xi_f: float = 0.6
+
+    def __post_init__(self):
+        super().__post_init__()
+        _positive("omega_f", self.omega_f)
+        _positive("xi_f", self.xi_f)
+
+    def psd(self, omega):
+        w2 = np.square(omega)
+        wf2 = self.omega_f**2
+        high_pass = w2**2 / ((wf2 - w2) ** 2 + 4.0 * self.xi_f**2 * wf2 * w2)
+        return super().psd(omega) * high_pass
+
+    def variance(self) -> float:
+        from scipy.integrate import quad
+
+        value, _ = quad(self.psd, 0.0, np.inf, limit=200)
+        return 2.0 * value
+
+
+@dataclass(frozen=True)
+class ShinozukaSato:
+    """Shinozuka-Sato envelope A(t) = (exp(-B1 t) - exp(-B2 t)) / C, Eq. 9,
+    normalized so that its maximum is 1.
+
+    Parameters
+    ----------
+    B1, B2 : float
+        Decay constants [1/s], 0 < B1 < B2.
+    """
+
+    B1: float = 0.085
+    B2: float = 0.17
+
+    def __post_init__(self):
+        _positive("B1", self.B1)
+        _positive("B2", self.B2)
+        if not self.B2 > self.B1:
+            raise CaseError("B2", f"must be greater than B1 = {self.B1}, got {self.B2}")
+
+    @property
+    def peak_time(self) -> float:
+        """Time of the envelope's maximum [s]."""
+        return math.log(self.B2 / self.B1) / (self.B2 - self.B1)
+
+    @property
+    def normalization(self) -> float:
+        """C of Eq. 9: the maximum of exp(-B1 t) - exp(-B2 t) [-]."""
+        t = self.peak_time
+        return math.exp(-self.B1 * t) - math.exp(-self.B2 * t)
+
+    def __call__(self, t):
+        """A(t) [-], Eq. 9."""
+        t = np.asarray(t, dtype=float)
+        return (np.exp(-self.B1 * t) - np.exp(-self.B2 * t)) / self.normalization
+
+
+@dataclass(frozen=True)
+class Excitation:
+    """A random ground motion: a stationary Gaussian process with a given
+    spectrum, optionally modulated by an envelope (Eq. 8).
+
+    Parameters
+    ----------
+    spectrum : KanaiTajimi or CloughPenzien
+        Two-sided PSD of the stationary ground acceleration.
+    duration : float
+        Record length [s].
+    envelope : ShinozukaSato or None
+        Deterministic modulating function; None for a stationary record.
+    time_step : float
+        Sampling interval of the records [s]. Between samples the acceleration
+        is interpolated linearly, as a recorded accelerogram would be.
+    cutoff_frequency : float
+        Highest frequency represented in the records [rad/s]; must lie below
+        the Nyquist frequency pi / time_step.
+    """
+
+    spectrum: KanaiTajimi
+    duration: float
+    envelope: ShinozukaSato | None = None
+    time_step: float = 0.005
+    cutoff_frequency: float = 2.0 * math.pi * 25.0
+
+    def __post_init__(self):
+        _positive("duration", self.duration)
+        _positive("time_step", self.time_step)
+        _positive("cutoff_frequency", self.cutoff_frequency)
+        if self.time_step > self.duration / 10:
+            raise CaseError("time_step", f"must be at most duration/10 = {self.duration / 10:g} s, got {self.time_step:g}")
+        nyquist = math.pi / self.time_step
+        if self.cutoff_frequency >= nyquist:
+            raise CaseError(
+                "cutoff_frequency",
+                f"must be below the Nyquist frequency pi/time_step = {nyquist:.4g} rad/s, got {self.cutoff_frequency:.4g}",
+            )
+
+    @property
+    def stationary(self) -> bool:
+        return self.envelope is None
+
+    @property
+    def n_samples(self) -> int:
+        """Number of samples of one record, t = 0, dt, ..., >= duration."""
+        return int(math.ceil(self.duration / self.time_step - 1e-9)) + 1
+
+    @property
+    def fft_length(self) -> int:
+        """Length of the synthesis FFT: a power of two >= n_samples, so the
+        record's period 2 pi / d_omega is at least its duration."""
+        return 1 << (self.n_samples - 1).bit_length()
+
+    def times(self) -> np.ndarray:
+        """Sample times [s]."""
+        return np.arange(self.n_samples) * self.time_step
+
+    def synthesis_frequencies(self) -> np.ndarray:
+        """Frequencies omega_j = j d_omega of the one-sided synthesis grid [rad/s]."""
+        m = self.fft_length
+        return np.arange(m // 2 + 1) * (2.0 * math.pi / (m * self.time_step))
+
+    def represented_variance(self) -> float:
+        """Variance of the stationary records as generated [m^2/s^4]: the sum
+        of the one-sided PSD over the synthesis grid up to the cutoff.
+        Tends to ``spectrum.variance()`` as the cutoff grows."""
+        return float(np.sum(_one_sided_weights(self)))
+
+    def envelope_values(self) -> np.ndarray:
+        """A(t) at the sample times (ones when stationary)."""
+        if self.envelope is None:
+            return np.ones(self.n_samples)
+        return self.envelope(self.times())
+
+
+def _one_sided_weights(excitation: Excitation) -> np.ndarray:
+    """G(omega_j) d_omega with G = 2 S_g the one-sided PSD; zero at omega = 0
+    and above the cutoff."""
+    omega = excitation.synthesis_frequencies()
+    d_omega = omega[1]
+    weights = 2.0 * excitation.spectrum.psd(omega) * d_omega
+    weights[0] = 0.0
+    weights[omega > excitation.cutoff_frequency] = 0.0
+    return weights
+
+
+def record_rng(seed: int, index: int) -> np.random.Generator:
+    """The random generator of record ``index`` of a study seeded ``seed``.
+
+    Records are seeded one by one (``SeedSequence(seed, spawn_key=(index,))``,
+    the ``index``-th child of ``SeedSequence(seed)``), so a record's motion does
+    not depend on how many records are drawn or how they are split into chunks.
+    """
+    return np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(index,)))
+
+
+def ground_acceleration(excitation: Excitation, rng: np.random.Generator) -> np.ndarray:
+    """One record of ground acceleration [m/s^2] at ``excitation.times()``.
+
+    Spectral representation with Gaussian complex amplitudes: x(t) = Re sum_j
+    sqrt(G_j d_omega) (a_j - i b_j) exp(i omega_j t), a_j, b_j ~ N(0, 1), which is
+    exactly Gaussian and stationary with variance sum_j G_j d_omega; then
+    multiplied by the envelope (Eq. 8).
+    """
+    weights = _one_sided_weights(excitation)
+    m = excitation.fft_length
+    amplitudes = np.sqrt(weights) * (rng.standard_normal(weights.size) - 1j * rng.standard_normal(weights.size))
+    # irfft(c)[k] = (2/m) Re sum_j c_j exp(2 pi i j k / m) when c_0 = c_{m/2} = 0.
+    record = np.fft.irfft(amplitudes, n=m)[: excitation.n_samples] * (m / 2)
+    if excitation.envelope is not None:
+        record *= excitation.envelope_values()
+    return record
+
+
+def ground_accelerations(excitation: Excitation, seed: int, indices) -> np.ndarray:
+    """Records ``indices`` of the study seeded ``seed``, one per row [m/s^2]."""
+    indices = np.asarray(indices, dtype=np.int64).ravel()
+    out = np.empty((indices.size, excitation.n_samples))
+    for row, index in enumerate(indices):
+        out[row] = ground_acceleration(excitation, record_rng(seed, int(index)))
+    return out

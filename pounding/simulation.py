@@ -1,0 +1,444 @@
+"""The "exact method": nonlinear time-history analysis of the two buildings,
+pounding included, over many seeded synthetic records (Monte Carlo; the
+left column of the paper's Fig. 4, Eq. 10-11).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import threading
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor, as_completed
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import stats
+
+from . import integrator as kernel
+from .case import Case
+from .errors import CaseError, SimulationError
+from .excitation import ground_accelerations
+
+__all__ = [
+    "Settings",
+    "SimulationResult",
+    "TimeHistory",
+    "Cancelled",
+    "simulate",
+    "simulate_record",
+    "integrate",
+]
+
+_FAILURES = {
+    kernel.NOT_FINITE: "the response became NaN or infinite",
+    kernel.RUNAWAY: "a floor displacement exceeded the runaway limit of {limit:g} m",
+    kernel.STEP_UNDERFLOW: "the step size fell below 1e-12 s (the system is too stiff to resolve)",
+}
+
+
+class Cancelled(Exception):
+    """A simulation was cancelled through its ``cancel`` event."""
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Numerical settings of the time-history analysis.
+
+    Parameters
+    ----------
+    tolerance : float
+        Relative tolerance of the local error per step [-]; the absolute
+        tolerances are tolerance * 1 mm on displacements and hysteretic
+        displacements, tolerance * 1 cm/s on velocities.
+    displacement_limit : float
+        A floor displacement beyond this [m] is reported as a runaway response.
+    workers : int or None
+        Threads running records in parallel; None uses every core.
+    chunk_size : int
+        Records per task (progress is reported per chunk).
+    """
+
+    tolerance: float = 1e-6
+    displacement_limit: float = 10.0
+    workers: int | None = None
+    chunk_size: int = 8
+
+    def __post_init__(self):
+        if not (isinstance(self.tolerance, float | int) and 1e-12 <= self.tolerance <= 1e-2):
+            raise CaseError("tolerance", f"must lie in [1e-12, 1e-2], got {self.tolerance!r}")
+        if not (isinstance(self.displacement_limit, float | int) and self.displacement_limit > 0):
+            raise CaseError("displacement_limit", f"must be > 0 m, got {self.displacement_limit!r}")
+        if self.workers is not None and not (isinstance(self.workers, int) and self.workers >= 1):
+            raise CaseError("workers", f"must be a whole number >= 1, got {self.workers!r}")
+        if not (isinstance(self.chunk_size, int) and self.chunk_size >= 1):
+            raise CaseError("chunk_size", f"must be a whole number >= 1, got {self.chunk_size!r}")
+
+    @property
+    def n_workers(self) -> int:
+        return self.workers or os.cpu_count() or 1
+
+
+@dataclass(frozen=True)
+class _System:
+    """The case packed into the kernel's arrays."""
+
+    floors: np.ndarray
+    below: np.ndarray
+    contact: np.ndarray
+    floor_1: int
+    floor_2: int
+    atol: np.ndarray
+
+    @property
+    def n_floors(self) -> int:
+        return self.below.size
+
+
+def _system(case: Case, settings: Settings) -> _System:
+    rows, below = [], []
+    for building in case.buildings:
+        offset = len(rows)
+        for number, (storey, damping) in enumerate(zip(building.storeys, building.storey_damping())):
+            bw = storey.bouc_wen
+            rows.append([storey.mass, storey.stiffness, damping, bw.alpha, bw.A, bw.beta, bw.gamma, bw.n])
+            below.append(offset + number - 1 if number > 0 else -1)
+    n1 = case.buildings[0].n_storeys
+    contact = case.contact
+    contact_vector = np.array(
+        [contact.model_code, contact.gap, contact.stiffness, contact.damping_ratio(), case.reduced_mass]
+    )
+    n = len(rows)
+    atol = np.concatenate([np.full(n, 1e-3), np.full(n, 1e-2), np.full(n, 1e-3)]) * settings.tolerance
+    return _System(
+        floors=np.array(rows, dtype=float),
+        below=np.array(below, dtype=np.int64),
+        contact=contact_vector,
+        floor_1=contact.levels[0] - 1,
+        floor_2=n1 + contact.levels[1] - 1,
+        atol=atol,
+    )
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """Per-record peaks of a Monte Carlo study, and their summary.
+
+    All arrays have one entry per record, in record order.
+
+    Attributes
+    ----------
+    force_max : ndarray
+        Extreme pounding force max_t |F(t)| [N], Eq. 11 (0 without pounding).
+    impacts : ndarray
+        Number of impacts.
+    penetration_max : ndarray
+        Peak penetration [m].
+    impact_velocity_max : ndarray
+        Largest approach velocity at the onset of an impact [m/s].
+    displacement_max : ndarray, shape (records, 2)
+        Peak |displacement| of the contact floor of building 1 and 2 [m].
+    steps : ndarray
+        Accepted integration steps.
+    """
+
+    case: Case
+    seed: int
+    indices: np.ndarray
+    force_max: np.ndarray
+    impacts: np.ndarray
+    penetration_max: np.ndarray
+    impact_velocity_max: np.ndarray
+    displacement_max: np.ndarray
+    steps: np.ndarray
+    settings: Settings
+
+    @property
+    def n_records(self) -> int:
+        return self.force_max.size
+
+    @property
+    def force_max_mean(self) -> float:
+        """Mean extreme pounding force over all records [N] (records without
+        pounding count as 0)."""
+        return float(np.mean(self.force_max))
+
+    @property
+    def force_max_std_error(self) -> float:
+        """Standard error of ``force_max_mean`` [N]."""
+        if self.n_records < 2:
+            return math.inf
+        return float(np.std(self.force_max, ddof=1) / math.sqrt(self.n_records))
+
+    @property
+    def force_max_confidence_interval(self) -> tuple[float, float]:
+        """95 % confidence interval of the mean extreme force (Student t) [N]."""
+        if self.n_records < 2:
+            return (-math.inf, math.inf)
+        half = stats.t.ppf(0.975, self.n_records - 1) * self.force_max_std_error
+        return (self.force_max_mean - half, self.force_max_mean + half)
+
+    @property
+    def pounding_fraction(self) -> float:
+        """Fraction of records with at least one impact [-]."""
+        return float(np.mean(self.impacts > 0))
+
+    @property
+    def impacts_mean(self) -> float:
+        """Mean number of impacts per record."""
+        return float(np.mean(self.impacts))
+
+    def to_dict(self) -> dict:
+        """JSON-ready summary and per-record values, SI units."""
+        low, high = self.force_max_confidence_interval
+        return {
+            "case": self.case.name,
+            "seed": self.seed,
+            "records": self.n_records,
+            "duration": self.case.excitation.duration,
+            "force_max_mean": self.force_max_mean,
+            "force_max_std_error": self.force_max_std_error,
+            "force_max_ci95": [low, high],
+            "pounding_fraction": self.pounding_fraction,
+            "impacts_mean": self.impacts_mean,
+            "force_max": self.force_max.tolist(),
+            "impacts": self.impacts.astype(int).tolist(),
+            "penetration_max": self.penetration_max.tolist(),
+            "impact_velocity_max": self.impact_velocity_max.tolist(),
+            "displacement_max": self.displacement_max.tolist(),
+            "units": {"force": "N", "length": "m", "velocity": "m/s", "duration": "s"},
+        }
+
+
+def _raise_failure(summary: np.ndarray, index: int, seed: int, settings: Settings) -> None:
+    status = int(summary[kernel.S_STATUS])
+    reason = _FAILURES[status].format(limit=settings.displacement_limit)
+    raise SimulationError(
+        f"record {index} (seed {seed}) failed at t = {summary[kernel.S_TIME]:.4f} s: {reason}"
+    )
+
+
+def _check_records(records: int, seed: int, first_record: int) -> None:
+    if isinstance(records, bool) or not isinstance(records, int) or records < 1:
+        raise CaseError("records", f"must be a whole number >= 1, got {records!r}")
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise CaseError("seed", f"must be a whole number >= 0, got {seed!r}")
+    if isinstance(first_record, bool) or not isinstance(first_record, int) or first_record < 0:
+        raise CaseError("first_record", f"must be a whole number >= 0, got {first_record!r}")
+
+
+def simulate(
+    case: Case,
+    records: int = 100,
+    seed: int = 0,
+    settings: Settings | None = None,
+    progress: Callable[[int, int], None] | None = None,
+    cancel: threading.Event | None = None,
+    first_record: int = 0,
+) -> SimulationResult:
+    """Monte Carlo estimate of the extreme pounding force.
+
+    Records ``first_record .. first_record + records - 1`` of the study seeded
+    ``seed`` are generated (``excitation.record_rng``) and integrated on
+    ``settings.n_workers`` threads.
+
+    Parameters
+    ----------
+    case : Case
+    records : int
+        Number of records.
+    seed : int
+        Seed of the study; the same case and seed give the same numbers.
+    settings : Settings, optional
+    progress : callable, optional
+        Called as ``progress(done, total)`` after each chunk of records.
+    cancel : threading.Event, optional
+        When set, the study stops at the next chunk and raises :class:`Cancelled`.
+    first_record : int
+        Index of the first record.
+
+    Returns
+    -------
+    SimulationResult
+
+    Raises
+    ------
+    SimulationError
+        When a record's integration fails; names the record and the time.
+    """
+    settings = settings or Settings()
+    _check_records(records, seed, first_record)
+    system = _system(case, settings)
+    excitation = case.excitation
+    y0 = np.zeros(3 * system.n_floors)
+    indices = np.arange(first_record, first_record + records)
+    summaries = np.zeros((records, kernel.SUMMARY_COLUMNS))
+    chunks = [slice(start, min(start + settings.chunk_size, records)) for start in range(0, records, settings.chunk_size)]
+
+    def run(chunk: slice) -> slice:
+        if cancel is not None and cancel.is_set():
+            return chunk
+        accelerations = ground_accelerations(excitation, seed, indices[chunk])
+        kernel.integrate_batch(
+            accelerations, excitation.time_step, y0, system.floors, system.below, system.contact,
+            system.floor_1, system.floor_2, settings.tolerance, system.atol, settings.displacement_limit,
+            summaries[chunk],
+        )
+        return chunk
+
+    done = 0
+    with ThreadPoolExecutor(max_workers=min(settings.n_workers, len(chunks))) as pool:
+        futures = [pool.submit(run, chunk) for chunk in chunks]
+        try:
+            for future in as_completed(futures):
+                chunk = future.result()
+                if cancel is not None and cancel.is_set():
+                    raise Cancelled("simulation cancelled")
+                failed = np.flatnonzero(summaries[chunk, kernel.S_STATUS] != kernel.OK)
+                if failed.size:
+                    row = chunk.start + failed[0]
+                    _raise_failure(summaries[row], int(indices[row]), seed, settings)
+                done += chunk.stop - chunk.start
+                if progress is not None:
+                    progress(done, records)
+        except BaseException:
+            for future in futures:
+                future.cancel()
+            raise
+    return SimulationResult(
+        case=case,
+        seed=seed,
+        indices=indices,
+        force_max=summaries[:, kernel.S_FORCE_MAX].copy(),
+        impacts=summaries[:, kernel.S_IMPACTS].astype(np.int64),
+        penetration_max=summaries[:, kernel.S_PENETRATION_MAX].copy(),
+        impact_velocity_max=summaries[:, kernel.S_IMPACT_VELOCITY_MAX].copy(),
+        displacement_max=summaries[:, [kernel.S_DISPLACEMENT_MAX_1, kernel.S_DISPLACEMENT_MAX_2]].copy(),
+        steps=summaries[:, kernel.S_STEPS].astype(np.int64),
+        settings=settings,
+    )
+
+
+@dataclass(frozen=True)
+class TimeHistory:
+    """The full response to one record, at every accepted integration step.
+
+    Attributes
+    ----------
+    time : ndarray
+        [s], non-uniform: the steps crowd into the impacts.
+    ground_acceleration : ndarray
+        [m/s^2] at ``time``.
+    displacement, velocity, hysteretic : ndarray, shape (steps, floors)
+        Floor displacements [m] and velocities [m/s] relative to the ground,
+        storey hysteretic displacements z [m]; floors of building 1 then 2.
+    contact_force : ndarray
+        Pounding force [N].
+    drift, storey_force : ndarray, shape (steps, floors)
+        Storey drifts [m] and restoring forces alpha k u + (1 - alpha) k z [N]
+        (Eq. 36), the hysteresis loops.
+    penetration : ndarray
+        delta = x1 - x2 - gap at the contact floors [m].
+    """
+
+    case: Case
+    time: np.ndarray
+    ground_acceleration: np.ndarray
+    displacement: np.ndarray
+    velocity: np.ndarray
+    hysteretic: np.ndarray
+    contact_force: np.ndarray
+    drift: np.ndarray
+    storey_force: np.ndarray
+    penetration: np.ndarray
+    summary: dict
+
+    def floor(self, building: int, level: int) -> int:
+        """Column of floor ``level`` (from 1) of ``building`` (1 or 2)."""
+        offset = 0 if building == 1 else self.case.buildings[0].n_storeys
+        return offset + level - 1
+
+
+def integrate(
+    case: Case,
+    ground_acceleration: np.ndarray,
+    time_step: float,
+    initial_state: np.ndarray | None = None,
+    settings: Settings | None = None,
+    label: str = "record",
+) -> TimeHistory:
+    """Integrate the case under a given ground-acceleration record.
+
+    Parameters
+    ----------
+    case : Case
+        Its excitation is not used: ``ground_acceleration`` is.
+    ground_acceleration : ndarray
+        Samples at t = k * time_step [m/s^2].
+    time_step : float
+        [s]
+    initial_state : ndarray, optional
+        (d, v, z) of all floors; at rest by default.
+    label : str
+        Names the record in error messages.
+    """
+    settings = settings or Settings()
+    system = _system(case, settings)
+    record = np.ascontiguousarray(ground_acceleration, dtype=float)
+    if record.ndim != 1 or record.size < 2:
+        raise CaseError("ground_acceleration", "must be a 1-D array of at least 2 samples")
+    n_state = 3 * system.n_floors
+    y0 = np.zeros(n_state) if initial_state is None else np.asarray(initial_state, dtype=float).copy()
+    if y0.shape != (n_state,):
+        raise CaseError("initial_state", f"must have {n_state} entries (d, v, z of every floor), got shape {y0.shape}")
+    summary = np.zeros(kernel.SUMMARY_COLUMNS)
+    capacity = 8 * record.size
+    while True:
+        time = np.empty(capacity)
+        state = np.empty((capacity, n_state))
+        force = np.empty(capacity)
+        stored = kernel.integrate_record(
+            record, time_step, y0, system.floors, system.below, system.contact, system.floor_1,
+            system.floor_2, settings.tolerance, system.atol, settings.displacement_limit, summary, time, state, force,
+        )
+        if summary[kernel.S_STATUS] != kernel.HISTORY_FULL:
+            break
+        capacity *= 4
+    if summary[kernel.S_STATUS] != kernel.OK:
+        status = int(summary[kernel.S_STATUS])
+        reason = _FAILURES[status].format(limit=settings.displacement_limit)
+        raise SimulationError(f"{label} failed at t = {summary[kernel.S_TIME]:.4f} s: {reason}")
+    time, state, force = time[:stored], state[:stored], force[:stored]
+    n = system.n_floors
+    displacement, velocity, hysteretic = state[:, :n], state[:, n : 2 * n], state[:, 2 * n :]
+    below_displacement = np.where(system.below >= 0, displacement[:, np.maximum(system.below, 0)], 0.0)
+    drift = displacement - below_displacement
+    k, alpha = system.floors[:, kernel.STIFFNESS], system.floors[:, kernel.ALPHA]
+    samples = np.arange(record.size) * time_step
+    return TimeHistory(
+        case=case,
+        time=time,
+        ground_acceleration=np.interp(time, samples, record),
+        displacement=displacement,
+        velocity=velocity,
+        hysteretic=hysteretic,
+        contact_force=force,
+        drift=drift,
+        storey_force=alpha * k * drift + (1.0 - alpha) * k * hysteretic,
+        penetration=displacement[:, system.floor_1] - displacement[:, system.floor_2] - case.contact.gap,
+        summary={
+            "force_max": summary[kernel.S_FORCE_MAX],
+            "impacts": int(summary[kernel.S_IMPACTS]),
+            "penetration_max": summary[kernel.S_PENETRATION_MAX],
+            "impact_velocity_max": summary[kernel.S_IMPACT_VELOCITY_MAX],
+            "steps": int(summary[kernel.S_STEPS]),
+        },
+    )
+
+
+def simulate_record(case: Case, seed: int = 0, index: int = 0, settings: Settings | None = None) -> TimeHistory:
+    """Full time histories of record ``index`` of the study seeded ``seed``
+    (the same record ``simulate`` integrates under that index)."""
+    _check_records(1, seed, index)
+    record = ground_accelerations(case.excitation, seed, [index])[0]
+    return integrate(case, record, case.excitation.time_step, settings=settings, label=f"record {index} (seed {seed})")

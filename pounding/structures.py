@@ -1,0 +1,238 @@
+"""Shear buildings with Bouc-Wen storeys (Eq. 1-2, 31-32, 36-39).
+
+A building is a chain of storeys from the ground up. Storey ``i`` joins floor
+``i-1`` (the ground for the first) to floor ``i``, which carries the storey's
+mass. Its restoring force is q = alpha k u + (1 - alpha) k z (Eq. 36) on the
+storey drift u, with the hysteretic displacement z of Eq. 2. One storey is the
+paper's SDOF building (Eq. 1); two storeys the unequal-height model (Eq. 31).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numba import njit
+from scipy.linalg import eigh
+
+from .errors import CaseError
+
+__all__ = ["BoucWen", "Storey", "Building", "bouc_wen_rate", "hysteresis"]
+
+
+def _finite(field_name: str, value) -> float:
+    if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value):
+        raise CaseError(field_name, f"must be a finite number, got {value!r}")
+    return float(value)
+
+
+@dataclass(frozen=True)
+class BoucWen:
+    """Bouc-Wen hysteresis parameters of one storey (Eq. 1-2).
+
+    Parameters
+    ----------
+    alpha : float
+        Post-yield to initial stiffness ratio [-], 0 <= alpha <= 1.
+    A : float
+        Amplitude of the hysteretic rate [-], > 0.
+    beta, gamma : float
+        Shape parameters [1/m^n]; beta + gamma > 0 gives a softening loop with
+        the finite yield displacement (A / (beta + gamma))^(1/n) (Eq. 33).
+    n : float
+        Smoothness of the transition to yield [-], >= 1.
+    """
+
+    alpha: float = 0.05
+    A: float = 1.0
+    beta: float = 200.0
+    gamma: float = -100.0
+    n: float = 1.0
+
+    def __post_init__(self):
+        alpha = _finite("alpha", self.alpha)
+        if not 0.0 <= alpha <= 1.0:
+            raise CaseError("alpha", f"must lie in [0, 1], got {alpha:g}")
+        if not _finite("A", self.A) > 0:
+            raise CaseError("A", f"must be > 0, got {self.A:g}")
+        if not _finite("n", self.n) >= 1:
+            raise CaseError("n", f"must be >= 1, got {self.n:g}")
+        _finite("beta", self.beta)
+        _finite("gamma", self.gamma)
+        if alpha < 1.0 and not self.beta + self.gamma > 0:
+            raise CaseError(
+                "beta",
+                f"beta + gamma must be > 0 for a softening storey with a finite yield displacement, "
+                f"got beta = {self.beta:g}, gamma = {self.gamma:g}",
+            )
+        if alpha < 1.0 and not self.beta - self.gamma >= 0:
+            raise CaseError("gamma", f"beta - gamma must be >= 0 (else unloading softens), got beta = {self.beta:g}, gamma = {self.gamma:g}")
+
+    @property
+    def yield_displacement(self) -> float:
+        """(A / (beta + gamma))^(1/n) [m], Eq. 33: the bound of |z|."""
+        return (self.A / (self.beta + self.gamma)) ** (1.0 / self.n)
+
+
+@njit(cache=True, nogil=True)
+def bouc_wen_rate(velocity, z, A, beta, gamma, n):
+    """dz/dt of the Bouc-Wen model, Eq. 2 [m/s].
+
+    Parameters
+    ----------
+    velocity : float
+        Storey drift velocity [m/s].
+    z : float
+        Hysteretic displacement [m].
+    A, beta, gamma, n : float
+        Bouc-Wen parameters, ``beta`` and ``gamma`` in [1/m^n].
+    """
+    abs_z_n = abs(z) ** n
+    # |z|^(n-1) z = |z|^n sign(z)
+    return A * velocity - beta * abs(velocity) * abs_z_n * np.sign(z) - gamma * velocity * abs_z_n
+
+
+@dataclass(frozen=True)
+class Storey:
+    """One storey: its initial stiffness, the mass of the floor above it, and
+    its Bouc-Wen law.
+
+    Parameters
+    ----------
+    mass : float
+        Floor mass [kg].
+    stiffness : float
+        Initial storey stiffness k [N/m].
+    bouc_wen : BoucWen
+        Hysteresis law; ``BoucWen(alpha=1)`` is linear elastic.
+    damping : float or None
+        Explicit storey damping coefficient [N s/m]; None lets the building's
+        ``damping_ratio`` decide.
+    """
+
+    mass: float
+    stiffness: float
+    bouc_wen: BoucWen = field(default_factory=BoucWen)
+    damping: float | None = None
+
+    def __post_init__(self):
+        if not _finite("mass", self.mass) > 0:
+            raise CaseError("mass", f"must be > 0 kg, got {self.mass:g}")
+        if not _finite("stiffness", self.stiffness) > 0:
+            raise CaseError("stiffness", f"must be > 0 N/m, got {self.stiffness:g}")
+        if self.damping is not None and not _finite("damping", self.damping) >= 0:
+            raise CaseError("damping", f"must be >= 0 N*s/m, got {self.damping:g}")
+
+
+@dataclass(frozen=True)
+class Building:
+    """A shear building: storeys from the ground up.
+
+    Parameters
+    ----------
+    storeys : tuple of Storey
+        At least one.
+    damping_ratio : float
+        Viscous damping ratio [-] of the first mode. One storey: c = 2 xi sqrt(k m).
+        More storeys: stiffness-proportional damping C = (2 xi / omega_1) K, i.e.
+        a damper c_i = 2 xi k_i / omega_1 in each storey. Ignored for storeys with
+        an explicit ``damping``.
+    """
+
+    storeys: tuple[Storey, ...]
+    damping_ratio: float = 0.05
+
+    def __post_init__(self):
+        object.__setattr__(self, "storeys", tuple(self.storeys))
+        if not self.storeys:
+            raise CaseError("storeys", "a building needs at least one storey")
+        ratio = _finite("damping_ratio", self.damping_ratio)
+        if not 0.0 <= ratio < 1.0:
+            raise CaseError("damping_ratio", f"must lie in [0, 1), got {ratio:g}")
+
+    @property
+    def n_storeys(self) -> int:
+        return len(self.storeys)
+
+    @property
+    def masses(self) -> np.ndarray:
+        """Floor masses [kg], from the first floor up."""
+        return np.array([s.mass for s in self.storeys])
+
+    @property
+    def stiffnesses(self) -> np.ndarray:
+        """Initial storey stiffnesses [N/m]."""
+        return np.array([s.stiffness for s in self.storeys])
+
+    def stiffness_matrix(self) -> np.ndarray:
+        """Initial stiffness matrix on floor displacements [N/m]."""
+        k = self.stiffnesses
+        n = k.size
+        matrix = np.zeros((n, n))
+        for i in range(n):
+            matrix[i, i] += k[i]
+            if i > 0:
+                matrix[i - 1, i - 1] += k[i]
+                matrix[i - 1, i] -= k[i]
+                matrix[i, i - 1] -= k[i]
+        return matrix
+
+    def mode_shapes(self) -> tuple[np.ndarray, np.ndarray]:
+        """Initial (pre-yield) circular frequencies [rad/s] and mass-normalized
+        mode shapes (columns), lowest first."""
+        eigenvalues, shapes = eigh(self.stiffness_matrix(), np.diag(self.masses))
+        return np.sqrt(eigenvalues), shapes
+
+    @property
+    def periods(self) -> np.ndarray:
+        """Initial natural periods [s], longest first."""
+        return 2.0 * np.pi / self.mode_shapes()[0]
+
+    def storey_damping(self) -> np.ndarray:
+        """Storey damping coefficients c_i [N s/m] (see ``damping_ratio``)."""
+        if self.n_storeys == 1:
+            storey = self.storeys[0]
+            derived = [2.0 * self.damping_ratio * math.sqrt(storey.stiffness * storey.mass)]
+        else:
+            omega_1 = self.mode_shapes()[0][0]
+            derived = 2.0 * self.damping_ratio * self.stiffnesses / omega_1
+        return np.array([s.damping if s.damping is not None else c for s, c in zip(self.storeys, derived)])
+
+
+def hysteresis(storey: Storey, drift) -> tuple[np.ndarray, np.ndarray]:
+    """Restoring force of a storey under a prescribed drift history (Eq. 36).
+
+    Integrates Eq. 2 along the path with the trapezoidal predictor-corrector on
+    each increment; fine increments give the quasi-static loop.
+
+    Parameters
+    ----------
+    storey : Storey
+    drift : array_like
+        Storey drift u at successive instants [m], starting from rest (z = 0).
+
+    Returns
+    -------
+    z : ndarray
+        Hysteretic displacement [m].
+    force : ndarray
+        Restoring force alpha k u + (1 - alpha) k z [N].
+    """
+    drift = np.asarray(drift, dtype=float)
+    bw = storey.bouc_wen
+    z = _hysteretic_path(drift, bw.A, bw.beta, bw.gamma, bw.n)
+    return z, bw.alpha * storey.stiffness * drift + (1.0 - bw.alpha) * storey.stiffness * z
+
+
+@njit(cache=True)
+def _hysteretic_path(drift, A, beta, gamma, n):
+    z = np.zeros(drift.size)
+    for i in range(1, drift.size):
+        du = drift[i] - drift[i - 1]
+        # dz/du along the path: Eq. 2 divided by the (positive) time step.
+        slope_0 = bouc_wen_rate(du, z[i - 1], A, beta, gamma, n)
+        z_predicted = z[i - 1] + slope_0
+        slope_1 = bouc_wen_rate(du, z_predicted, A, beta, gamma, n)
+        z[i] = z[i - 1] + 0.5 * (slope_0 + slope_1)
+    return z
