@@ -4,36 +4,48 @@ under random earthquakes, by closed form and by Monte Carlo time histories.
 Reference: S. Rahimi and M. Soltani (2016), "Expected extreme value of
 pounding force between two adjacent buildings", Structural Engineering and
 Mechanics.
+
+The public names are imported lazily, so that ``import pounding.cli`` (and
+``pounding cases``) stays light.
 """
 
-from .case import Case, load_case, preset_names
-from .contact import Contact
-from .errors import CaseError, ConvergenceError, SimulationError
-from .excitation import CloughPenzien, Excitation, KanaiTajimi, ShinozukaSato
-from .simulation import Settings, SimulationResult, TimeHistory, integrate, simulate, simulate_record
-from .structures import BoucWen, Building, Storey
+from importlib import import_module
 
 __version__ = "0.1.0"
 
-__all__ = [
-    "BoucWen",
-    "Building",
-    "Case",
-    "CaseError",
-    "CloughPenzien",
-    "Contact",
-    "ConvergenceError",
-    "Excitation",
-    "KanaiTajimi",
-    "Settings",
-    "ShinozukaSato",
-    "SimulationError",
-    "SimulationResult",
-    "Storey",
-    "TimeHistory",
-    "integrate",
-    "load_case",
-    "preset_names",
-    "simulate",
-    "simulate_record",
-]
+_EXPORTS = {
+    "Case": "case",
+    "load_case": "case",
+    "preset_names": "case",
+    "Contact": "contact",
+    "CaseError": "errors",
+    "ConvergenceError": "errors",
+    "SimulationError": "errors",
+    "CloughPenzien": "excitation",
+    "Excitation": "excitation",
+    "KanaiTajimi": "excitation",
+    "ShinozukaSato": "excitation",
+    "Settings": "simulation",
+    "SimulationResult": "simulation",
+    "TimeHistory": "simulation",
+    "integrate": "simulation",
+    "simulate": "simulation",
+    "simulate_record": "simulation",
+    "BoucWen": "structures",
+    "Building": "structures",
+    "Storey": "structures",
+}
+
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name: str):
+    if name in _EXPORTS:
+        value = getattr(import_module(f".{_EXPORTS[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'pounding' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(list(globals()) + __all__)

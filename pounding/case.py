@@ -9,12 +9,12 @@ from __future__ import annotations
 import math
 import tomllib
 from dataclasses import dataclass
-from importlib import resources
 from pathlib import Path
 
 from .contact import CONTACT_MODELS, Contact
 from .errors import CaseError
 from .excitation import CloughPenzien, Excitation, KanaiTajimi, ShinozukaSato
+from .presets import preset_description, preset_names, preset_text
 from .structures import BoucWen, Building, Storey
 from .units import SI, UnitSystem, unit_system
 
@@ -229,16 +229,6 @@ def case_from_dict(data: dict, name: str = "case") -> Case:
     )
 
 
-def _preset_files() -> dict[str, resources.abc.Traversable]:
-    folder = resources.files("pounding") / "presets"
-    return {entry.name.removesuffix(".toml"): entry for entry in folder.iterdir() if entry.name.endswith(".toml")}
-
-
-def preset_names() -> list[str]:
-    """Names of the built-in cases, sorted."""
-    return sorted(_preset_files())
-
-
 def _parse(text: str, source: str) -> dict:
     try:
         return tomllib.loads(text)
@@ -246,17 +236,12 @@ def _parse(text: str, source: str) -> dict:
         raise CaseError(source, f"not valid TOML: {error}") from None
 
 
-def preset_description(name: str) -> str:
-    """The one-paragraph description of a built-in case."""
-    return str(_parse(_preset_files()[name].read_text(), name).get("description", ""))
-
-
 def load_case(source: str | Path) -> Case:
     """A case from a TOML file path or a preset name (see ``preset_names()``)."""
-    presets = _preset_files()
-    if isinstance(source, str) and source in presets:
-        return case_from_dict(_parse(presets[source].read_text(), source), name=source)
+    text = preset_text(source) if isinstance(source, str) else None
+    if text is not None:
+        return case_from_dict(_parse(text, source), name=source)
     path = Path(source)
     if not path.is_file():
-        raise CaseError("case", f"{str(source)!r} is neither a TOML file nor a preset; presets: {', '.join(sorted(presets))}")
+        raise CaseError("case", f"{str(source)!r} is neither a TOML file nor a preset; presets: {', '.join(preset_names())}")
     return case_from_dict(_parse(path.read_text(), str(path)), name=path.stem)

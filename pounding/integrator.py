@@ -125,7 +125,7 @@ def _crossing(p0, p1, m0, m1):
 @njit(cache=True, nogil=True)
 def _peak_between(t0, f0, t1, f1, t2, f2):
     """Peak of the parabola through three samples around a local maximum f1
-    (t0 < t1 < t2): the force's peak rarely falls on a step end."""
+    (t0 < t1 < t2): a peak of force or penetration rarely falls on a step end."""
     d0 = (f1 - f0) / (t1 - t0)
     d1 = (f2 - f1) / (t2 - t1)
     curvature = (d1 - d0) / (t2 - t0)
@@ -204,6 +204,7 @@ def integrate_record(
     force = derivatives(record[0], y, k1, floors, below, contact, floor_1, floor_2, approach_velocity)
     # The last two accepted (time, force) samples, for the peak between steps.
     t_back_2, force_back_2, t_back_1, force_back_1 = -2.0, 0.0, -1.0, force
+    delta_back_2, delta_back_1 = -1.0, -1.0
     if store:
         history_time[0] = 0.0
         history_state[0, :] = y
@@ -224,6 +225,10 @@ def integrate_record(
             if t + h_try >= t_end - 1e-12 * time_step:
                 h_try = t_end - t
                 last = True
+            if y[floor_1] - y[floor_2] <= gap:
+                # Out of contact, the law's memory follows the closing velocity, so that
+                # the step into the next impact starts with the right one (hertzdamp).
+                approach_velocity = max(y[n + floor_1] - y[n + floor_2], 0.0)
             # Dormand-Prince stages; the ground acceleration is linear in t here.
             for i in range(n_state):
                 y_stage[i] = y[i] + h_try * _A21 * k1[i]
@@ -288,8 +293,11 @@ def integrate_record(
             force_max = max(force_max, abs(force))
             if force_back_1 > 0.0 and force_back_1 >= force_back_2 and force_back_1 >= force and force_back_2 > 0.0:
                 force_max = max(force_max, _peak_between(t_back_2, force_back_2, t_back_1, force_back_1, t, force))
-            t_back_2, force_back_2, t_back_1, force_back_1 = t_back_1, force_back_1, t, force
             penetration_max = max(penetration_max, delta_1)
+            if delta_back_1 > 0.0 and delta_back_2 > 0.0 and delta_back_1 >= delta_back_2 and delta_back_1 >= delta_1:
+                penetration_max = max(penetration_max, _peak_between(t_back_2, delta_back_2, t_back_1, delta_back_1, t, delta_1))
+            t_back_2, force_back_2, t_back_1, force_back_1 = t_back_1, force_back_1, t, force
+            delta_back_2, delta_back_1 = delta_back_1, delta_1
             displacement_max_1 = max(displacement_max_1, abs(y[floor_1]))
             displacement_max_2 = max(displacement_max_2, abs(y[floor_2]))
             for i in range(n):

@@ -13,7 +13,7 @@ from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import stats
+from scipy.special import stdtrit  # Student t quantile; scipy.stats costs a second to import
 
 from . import integrator as kernel
 from .case import Case
@@ -175,7 +175,7 @@ class SimulationResult:
         """95 % confidence interval of the mean extreme force (Student t) [N]."""
         if self.n_records < 2:
             return (-math.inf, math.inf)
-        half = stats.t.ppf(0.975, self.n_records - 1) * self.force_max_std_error
+        half = stdtrit(self.n_records - 1, 0.975) * self.force_max_std_error
         return (self.force_max_mean - half, self.force_max_mean + half)
 
     @property

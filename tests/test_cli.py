@@ -1,0 +1,92 @@
+"""The command line, run as a user runs it."""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from pounding import load_case, preset_names, simulate
+
+
+def run(*args, **kwargs):
+    return subprocess.run([sys.executable, "-m", "pounding", *args], capture_output=True, text=True, timeout=300, **kwargs)
+
+
+def test_cases_lists_every_preset():
+    out = run("cases")
+    assert out.returncode == 0
+    for name in preset_names():
+        assert name in out.stdout
+
+
+def test_simulate_json_matches_the_library():
+    out = run("simulate", "section5-T2-0.8", "--records", "6", "--seed", "3", "--json")
+    assert out.returncode == 0, out.stderr
+    data = json.loads(out.stdout)
+    for key in ("force_max_mean", "force_max_std_error", "force_max", "pounding_fraction", "impacts_mean"):
+        assert key in data
+    expected = simulate(load_case("section5-T2-0.8"), records=6, seed=3)
+    np.testing.assert_allclose(data["force_max"], expected.force_max, rtol=1e-12)
+    assert data["force_max_mean"] == pytest.approx(expected.force_max_mean)
+    assert out.stderr == ""  # no progress bar when stderr is not a terminal
+
+
+def test_simulate_table_has_units():
+    out = run("simulate", "section5-T2-0.8", "--records", "4")
+    assert out.returncode == 0
+    assert "MN" in out.stdout or "kN" in out.stdout
+    assert "impacts per record" in out.stdout
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (("simulate", "no-such-case"), "neither a TOML file nor a preset"),
+        (("simulate", "section5-T2-0.4", "--records", "0"), "--records"),
+        (("simulate", "section5-T2-0.4", "--seed", "-1"), "--seed"),
+        (("simulate", "section5-T2-0.4", "--tolerance", "0.5"), "tolerance"),
+        (("explode",), "invalid choice"),
+    ],
+)
+def test_bad_input_exits_2_with_one_line(args, words):
+    out = run(*args)
+    assert out.returncode == 2
+    lines = out.stderr.strip().splitlines()
+    assert words in out.stderr
+    assert "Traceback" not in out.stderr
+    assert len([line for line in lines if "error" in line]) == 1
+
+
+def test_bad_case_file_names_the_field(tmp_path):
+    path = tmp_path / "bad.toml"
+    source = (
+        'units = "SI"\n[excitation]\nG0 = 0.006\nomega_g = 27.0\nxi_g = 0.34\nduration = 5.0\n'
+        "[[buildings]]\n[[buildings.storeys]]\nmass = 4e4\nstiffness = 1e6\n"
+        "[[buildings]]\n[[buildings.storeys]]\nmass = 4e4\nstiffness = 1e7\n"
+        "[contact]\ngap = 0.01\nstiffness = 2e9\nrestitution = 1.5\n"
+    )
+    path.write_text(source)
+    out = run("simulate", str(path), "--records", "2")
+    assert out.returncode == 2
+    assert "contact.restitution" in out.stderr
+    assert "(0, 1]" in out.stderr
+
+
+def test_command_line_imports_no_plotting_library():
+    code = (
+        "import sys; from pounding.cli import main; main(['simulate', 'section5-T2-0.4', '--records', '2', '--json']);"
+        "heavy = [m for m in ('panel', 'holoviews', 'bokeh', 'matplotlib') if m in sys.modules];"
+        "print('HEAVY', heavy, file=sys.stderr)"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    assert "HEAVY []" in out.stderr
+
+
+def test_help_has_examples():
+    for args in (("--help",), ("simulate", "--help"), ("cases", "--help"), ("dashboard", "--help")):
+        out = run(*args)
+        assert out.returncode == 0
+        assert "example" in out.stdout

@@ -1,0 +1,102 @@
+"""A single impact of two free masses against Jankowski's energy balance and
+restitution (Eq. 3-6, 13), through the production integrator."""
+
+import numpy as np
+import pytest
+
+from pounding import BoucWen, Building, Case, Contact, Excitation, KanaiTajimi, Settings, Storey, integrate
+from pounding.contact import contact_force, hertz_peak_penetration, jankowski_damping_ratio
+
+M1, M2 = 2.0e4, 3.0e4
+REDUCED_MASS = M1 * M2 / (M1 + M2)
+BETA = 2.0e9  # N/m^1.5, about the paper's 2e5 kgf/cm^1.5
+
+
+def free_mass(mass: float) -> Building:
+    # A spring of 1e-3 N/m: a free mass over the 50 ms of an impact.
+    return Building((Storey(mass, 1e-3, BoucWen(alpha=1.0)),), damping_ratio=0.0)
+
+
+def single_impact(restitution: float, approach_velocity: float, model: str = "jankowski", stiffness: float = BETA):
+    case = Case(
+        Excitation(KanaiTajimi(0.0, 10.0, 0.3), 1.0, time_step=1e-3),
+        (free_mass(M1), free_mass(M2)),
+        Contact(gap=1e-3, stiffness=stiffness, restitution=restitution, model=model),
+    )
+    state = np.zeros(6)  # (d1, d2, v1, v2, z1, z2)
+    state[2], state[3] = 0.6 * approach_velocity, -0.4 * approach_velocity
+    history = integrate(case, np.zeros(301), 1e-3, initial_state=state)
+    separation = -(history.velocity[-1, 0] - history.velocity[-1, 1])
+    return history, separation / approach_velocity
+
+
+@pytest.mark.parametrize("model", ["jankowski", "hertz", "hertzdamp"])
+@pytest.mark.parametrize("velocity", [0.05, 0.4, 2.0])
+def test_elastic_impact_matches_hertz_energy_balance(model, velocity):
+    history, rebound = single_impact(1.0, velocity, model)
+    expected = hertz_peak_penetration(velocity, BETA, REDUCED_MASS)
+    assert history.summary["impacts"] == 1
+    assert history.summary["penetration_max"] == pytest.approx(expected, rel=1e-3)
+    assert history.summary["force_max"] == pytest.approx(BETA * expected**1.5, rel=1.5e-3)
+    assert history.summary["impact_velocity_max"] == pytest.approx(velocity, rel=1e-6)
+    # No energy lost: the bodies part at the speed they met.
+    assert rebound == pytest.approx(1.0, abs=1e-4)
+
+
+@pytest.mark.parametrize("model", ["jankowski", "hertzdamp", "linear"])
+def test_momentum_is_conserved(model):
+    history, _ = single_impact(0.65, 0.5, model, stiffness=BETA if model != "linear" else 5e7)
+    momentum = M1 * history.velocity[:, 0] + M2 * history.velocity[:, 1]
+    assert np.max(np.abs(momentum - momentum[0])) < 1e-6 * M1 * 0.5
+
+
+@pytest.mark.parametrize("restitution", [0.5, 0.65, 0.8, 0.9])
+def test_jankowski_rebound_follows_the_restitution(restitution):
+    _, slow = single_impact(restitution, 0.1)
+    _, fast = single_impact(restitution, 1.0)
+    # Eq. 5 is Jankowski's approximation: a few per cent.
+    assert slow == pytest.approx(restitution, rel=0.02)
+    # The sqrt(delta) damping law is self-similar: the rebound does not depend
+    # on the impact velocity (Eq. 4 as printed fails this).
+    assert fast == pytest.approx(slow, rel=1e-3)
+
+
+@pytest.mark.parametrize("restitution", [0.5, 0.65, 0.8, 0.9])
+def test_damped_impact_peaks_below_the_undamped_one(restitution):
+    damped, _ = single_impact(restitution, 0.4)
+    undamped, _ = single_impact(1.0, 0.4)
+    assert damped.summary["force_max"] < undamped.summary["force_max"]
+    assert damped.summary["penetration_max"] < undamped.summary["penetration_max"]
+
+
+def test_jankowski_damping_ratio_vanishes_for_elastic_impact():
+    assert jankowski_damping_ratio(1.0) == 0.0
+    ratios = [jankowski_damping_ratio(e) for e in (0.3, 0.5, 0.7, 0.9)]
+    assert all(a > b for a, b in zip(ratios, ratios[1:]))
+
+
+@pytest.mark.parametrize("model", ["hertzdamp", "linear"])
+def test_force_never_pulls(model):
+    history, rebound = single_impact(0.4, 0.5, model, stiffness=BETA if model != "linear" else 5e7)
+    assert history.contact_force.min() >= 0.0
+    assert 0.4 <= rebound < 1.0
+
+
+def test_recorded_force_is_the_contact_law():
+    history, _ = single_impact(0.65, 0.5)
+    contact = history.case.contact
+    recomputed = np.array(
+        [contact_force(0, d, v, BETA, contact.damping_ratio(), REDUCED_MASS, 0.5) for d, v in zip(history.penetration, history.velocity[:, 0] - history.velocity[:, 1])]
+    )
+    np.testing.assert_allclose(history.contact_force, recomputed, rtol=1e-12, atol=1e-9)
+    assert history.contact_force.max() > 0
+
+
+def test_tighter_tolerance_does_not_move_the_impact():
+    case_velocity = 0.4
+    loose, _ = single_impact(0.65, case_velocity)
+    case = loose.case
+    state = np.zeros(6)
+    state[2], state[3] = 0.6 * case_velocity, -0.4 * case_velocity
+    tight = integrate(case, np.zeros(301), 1e-3, initial_state=state, settings=Settings(tolerance=1e-10))
+    assert loose.summary["force_max"] == pytest.approx(tight.summary["force_max"], rel=1e-4)
