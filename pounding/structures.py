@@ -88,9 +88,17 @@ def bouc_wen_rate(velocity, z, A, beta, gamma, n):
     A, beta, gamma, n : float
         Bouc-Wen parameters, ``beta`` and ``gamma`` in [1/m^n].
     """
-    abs_z_n = abs(z) ** n
+    abs_z = abs(z)
+    # The common exponents without pow(): it dominates the kernel's cost otherwise.
+    if n == 1.0:
+        abs_z_n = abs_z
+    elif n == 2.0:
+        abs_z_n = abs_z * abs_z
+    else:
+        abs_z_n = abs_z**n
     # |z|^(n-1) z = |z|^n sign(z)
-    return A * velocity - beta * abs(velocity) * abs_z_n * np.sign(z) - gamma * velocity * abs_z_n
+    signed = abs_z_n if z >= 0.0 else -abs_z_n
+    return A * velocity - beta * abs(velocity) * signed - gamma * velocity * abs_z_n
 
 
 @dataclass(frozen=True)
