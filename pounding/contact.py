@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 from numba import njit
 
@@ -38,6 +39,9 @@ __all__ = [
     "linear_damping_ratio",
     "contact_force",
     "hertz_peak_penetration",
+    "undamped_peak_force",
+    "peak_force_ratio",
+    "impact_peak_force",
 ]
 
 CONTACT_MODELS = ("jankowski", "hertz", "hertzdamp", "linear")
@@ -161,3 +165,47 @@ def contact_force(model, delta, delta_dot, stiffness, damping_ratio, reduced_mas
         # damping_ratio holds 3 (1 - e^2) / 4; the law divides by the approach velocity.
         return max(elastic * (1.0 + damping_ratio * delta_dot / max(approach_velocity, 1e-12)), 0.0)
     return elastic
+
+
+def undamped_peak_force(contact: Contact, approach_velocity, reduced_mass: float):
+    """Peak force of an impact without energy loss [N]: Hertz, beta delta_H^1.5
+    with delta_H of Eq. 13 (approach velocity in place of Eq. 13's separation
+    velocity, NOTES.md 10); ``linear``: v sqrt(k m)."""
+    if contact.model == "linear":
+        return approach_velocity * math.sqrt(contact.stiffness * reduced_mass)
+    return contact.stiffness * hertz_peak_penetration(approach_velocity, contact.stiffness, reduced_mass) ** 1.5
+
+
+@lru_cache(maxsize=1024)
+def peak_force_ratio(model: str, restitution: float) -> float:
+    """Peak force of one impact over ``undamped_peak_force`` [-].
+
+    Every law here is self-similar: scaling the penetration by the undamped
+    peak and time by it over the approach velocity removes beta, the masses
+    and the velocity, so the ratio depends on the law and the restitution
+    alone. It is found by running the time-history kernel on two free unit
+    masses meeting at unit speed (about 0.1 ms).
+    """
+    import numpy as np
+
+    from . import integrator as kernel  # imports this module: import late
+
+    contact = Contact(gap=0.0, stiffness=1.0, restitution=restitution, model=model)
+    # Two free floors of mass 2 (reduced mass 1), closing at unit speed.
+    free_floor = [2.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0]
+    floors = np.array([free_floor, free_floor])
+    contact_vector = np.array([contact.model_code, 0.0, 1.0, contact.damping_ratio(), 1.0])
+    summary = np.zeros(kernel.SUMMARY_COLUMNS)
+    no_history = np.empty(0)
+    kernel.integrate_record(
+        np.zeros(2), 10.0, np.array([0.0, 0.0, 0.5, -0.5, 0.0, 0.0]), floors, np.array([-1, -1]),
+        contact_vector, 0, 1, 1e-10, np.full(6, 1e-14), 1e3, summary, no_history, np.empty((0, 6)), no_history,
+    )
+    return float(summary[kernel.S_FORCE_MAX]) / undamped_peak_force(contact, 1.0, 1.0)
+
+
+def impact_peak_force(contact: Contact, approach_velocity, reduced_mass: float):
+    """Peak force of one impact of two masses meeting at ``approach_velocity`` [N]:
+    ``peak_force_ratio`` times ``undamped_peak_force``. It grows as v^1.2
+    (v for ``linear``)."""
+    return peak_force_ratio(contact.model, contact.restitution) * undamped_peak_force(contact, approach_velocity, reduced_mass)

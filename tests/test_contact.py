@@ -100,3 +100,36 @@ def test_tighter_tolerance_does_not_move_the_impact():
     state[2], state[3] = 0.6 * case_velocity, -0.4 * case_velocity
     tight = integrate(case, np.zeros(301), 1e-3, initial_state=state, settings=Settings(tolerance=1e-10))
     assert loose.summary["force_max"] == pytest.approx(tight.summary["force_max"], rel=1e-4)
+
+
+@pytest.mark.parametrize("restitution", [0.3, 0.5, 0.65, 0.8, 0.95])
+def test_peak_force_ratio_solves_the_dimensionless_impact(restitution):
+    """With delta = delta_H x and t = delta_H / v0 tau, Jankowski's law reads
+    x'' = -5/4 x^1.5 - 2 xi sqrt(5/4) x^(1/4) x' while approaching, and
+    F / F_H = x^1.5 + 2 xi / sqrt(5/4) x^(1/4) x'."""
+    from scipy.integrate import solve_ivp
+
+    from pounding.contact import peak_force_ratio
+
+    xi = jankowski_damping_ratio(restitution)
+
+    def rhs(_t, y):
+        x, rate = max(y[0], 0.0), y[1]
+        damping = 2 * xi * np.sqrt(1.25) * x**0.25 * rate if rate > 0 else 0.0
+        return [rate, -1.25 * x**1.5 - damping]
+
+    solution = solve_ivp(rhs, (0, 3.0), [0.0, 1.0], rtol=1e-11, atol=1e-13, max_step=1e-3, method="DOP853")
+    x, rate = np.maximum(solution.y[0], 0), solution.y[1]
+    ratio = x**1.5 + np.where(rate > 0, 2 * xi / np.sqrt(1.25) * x**0.25 * rate, 0.0)
+    assert peak_force_ratio("jankowski", restitution) == pytest.approx(ratio.max(), rel=5e-5)
+
+
+@pytest.mark.parametrize("velocity", [0.05, 0.5])
+@pytest.mark.parametrize("model, restitution", [("jankowski", 0.65), ("jankowski", 0.9), ("hertzdamp", 0.6), ("linear", 0.7)])
+def test_impact_peak_force_matches_a_simulated_impact(model, velocity, restitution):
+    from pounding.contact import impact_peak_force
+
+    stiffness = BETA if model != "linear" else 5e7
+    history, _ = single_impact(restitution, velocity, model, stiffness=stiffness)
+    contact = Contact(gap=0.0, stiffness=stiffness, restitution=restitution, model=model)
+    assert history.summary["force_max"] == pytest.approx(impact_peak_force(contact, velocity, REDUCED_MASS), rel=2e-3)
