@@ -1,0 +1,382 @@
+"""Stationary response of a linearized pair at its contact floors
+(Eq. 15-18, 22, 24-25).
+
+Two independent routes give the covariance of the contact floors'
+displacements, velocities and accelerations (all relative to the ground):
+
+- :func:`response_lyapunov`, the default and fast one: the stationary
+  covariance of the joint state-space model (both buildings and the ground
+  filter) from the Lyapunov equation;
+- :func:`response_frequency`: integrals over frequency of the complex
+  frequency response functions (FRFs) of the linearized buildings against
+  the ground spectrum, E[Y1 Y2] = int H1 conj(H2) S_g d omega over (-inf, inf),
+  as Eq. 17-18 and 25 write them.
+
+Their agreement checks the state-space model, the FRFs and the 2 pi factor of
+the white-noise intensity. Units: SI; PSDs two-sided per [rad/s].
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.integrate import quad_vec
+
+from .linearization import (
+    LinearizedBuilding,
+    StateSpace,
+    linearize_pair,
+    pair_state_space,
+)
+
+__all__ = [
+    "OUTPUTS",
+    "ContactResponse",
+    "FloorStatistics",
+    "contact_covariance_history",
+    "contact_output_matrix",
+    "floor_statistics",
+    "frequency_response",
+    "psd_relative_velocity",
+    "response",
+    "response_frequency",
+    "response_lyapunov",
+]
+
+OUTPUTS = ("x1", "x2", "v1", "v2", "a1", "a2")
+"""Order of :attr:`ContactResponse.covariance`: displacement, velocity and
+acceleration of the contact floor of building 1 and of building 2, relative to
+the ground [m, m/s, m/s^2]."""
+
+_X1, _X2, _V1, _V2, _A1, _A2 = range(6)
+
+
+@dataclass(frozen=True, eq=False)
+class ContactResponse:
+    """Stationary second moments at the contact floors of a linearized pair.
+
+    Parameters
+    ----------
+    levels : tuple of int
+        The contact floors (building 1, building 2), counted from 1.
+    covariance : ndarray, (6, 6)
+        Covariance of the variables :data:`OUTPUTS` (SI).
+    method : str
+        ``"lyapunov"`` or ``"frequency"``.
+
+    Notes
+    -----
+    The relative displacement is X = x1 - x2 (positive closes the gap) and the
+    relative velocity V = dX/dt = v1 - v2 (Eq. 15).
+    """
+
+    levels: tuple[int, int]
+    covariance: np.ndarray
+    method: str = "lyapunov"
+
+    def _sigma(self, i: int) -> float:
+        return math.sqrt(self.covariance[i, i])
+
+    def _sigma_difference(self, i: int, j: int) -> float:
+        c = self.covariance
+        return math.sqrt(c[i, i] + c[j, j] - 2.0 * c[i, j])
+
+    @property
+    def sigma_displacement(self) -> tuple[float, float]:
+        """Standard deviations of the contact floors' displacements [m] (Eq. 25)."""
+        return self._sigma(_X1), self._sigma(_X2)
+
+    @property
+    def sigma_velocity(self) -> tuple[float, float]:
+        """Standard deviations of the contact floors' velocities [m/s] (Eq. 17)."""
+        return self._sigma(_V1), self._sigma(_V2)
+
+    @property
+    def sigma_acceleration(self) -> tuple[float, float]:
+        """Standard deviations of the contact floors' accelerations relative to the ground [m/s^2]."""
+        return self._sigma(_A1), self._sigma(_A2)
+
+    @property
+    def covariance_displacement(self) -> float:
+        """E[x1 x2] [m^2] (Eq. 25)."""
+        return float(self.covariance[_X1, _X2])
+
+    @property
+    def covariance_velocity(self) -> float:
+        """E[v1 v2] [m^2/s^2] (Eq. 18)."""
+        return float(self.covariance[_V1, _V2])
+
+    @property
+    def sigma_relative_displacement(self) -> float:
+        """sigma of X = x1 - x2 [m]: sigma_x1^2 + sigma_x2^2 - 2 E[x1 x2] (Eq. 25)."""
+        return self._sigma_difference(_X1, _X2)
+
+    @property
+    def sigma_relative_velocity(self) -> float:
+        """sigma of V = v1 - v2 [m/s]: sigma_v1^2 + sigma_v2^2 - 2 E[v1 v2] (Eq. 16)."""
+        return self._sigma_difference(_V1, _V2)
+
+    @property
+    def sigma_relative_acceleration(self) -> float:
+        """sigma of dV/dt = a1 - a2 [m/s^2]."""
+        return self._sigma_difference(_A1, _A2)
+
+    @property
+    def zero_crossing_rate(self) -> float:
+        """nu = sigma_V / (pi sigma_X) [1/s], Eq. 24: the mean rate of zero
+        crossings of X in *both* directions (twice Rice's upcrossing rate).
+        The paper uses it in Davenport's formula for the peak of V."""
+        return self.sigma_relative_velocity / (math.pi * self.sigma_relative_displacement)
+
+    @property
+    def upcrossing_rate(self) -> float:
+        """Rice's zero-upcrossing rate of X, nu0+ = sigma_V / (2 pi sigma_X) [1/s]
+        (one direction)."""
+        return self.sigma_relative_velocity / (2.0 * math.pi * self.sigma_relative_displacement)
+
+    @property
+    def velocity_upcrossing_rate(self) -> float:
+        """Rice's zero-upcrossing rate of V itself, sigma_dV/dt / (2 pi sigma_V) [1/s]:
+        the rate Davenport's formula calls for when the peak of V is sought."""
+        return self.sigma_relative_acceleration / (2.0 * math.pi * self.sigma_relative_velocity)
+
+    @property
+    def correlation_relative(self) -> float:
+        """Correlation of X and V at one instant [-]: zero for a stationary process."""
+        c = self.covariance
+        cov = c[_X1, _V1] - c[_X1, _V2] - c[_X2, _V1] + c[_X2, _V2]
+        return float(cov / (self.sigma_relative_displacement * self.sigma_relative_velocity))
+
+
+def _contact_floors(case) -> tuple[int, int]:
+    return tuple(level - 1 for level in case.contact.levels)
+
+
+def contact_output_matrix(case, model: StateSpace) -> np.ndarray:
+    """Rows mapping the state of the pair model to :data:`OUTPUTS`, (6, n)."""
+    f1, f2 = _contact_floors(case)
+    return np.array(
+        [
+            model.displacement[0][f1],
+            model.displacement[1][f2],
+            model.velocity[0][f1],
+            model.velocity[1][f2],
+            model.acceleration(0)[f1],
+            model.acceleration(1)[f2],
+        ]
+    )
+
+
+def _linearized(case, linearized):
+    return linearize_pair(case) if linearized is None else tuple(linearized)
+
+
+def response_lyapunov(case, linearized=None) -> ContactResponse:
+    """Contact-floor response by the Lyapunov equation of the joint model.
+
+    The pair and the ground filter form x' = A x + b w with w white noise of
+    two-sided intensity G0; P solves A P + P A^T + 2 pi G0 b b^T = 0 and the
+    outputs' covariance is C P C^T (Eq. 16-18, 25 without frequency integrals).
+
+    Parameters
+    ----------
+    case : Case
+        A non-stationary case is treated by its stationary spectrum (sigma_inf).
+    linearized : tuple of two LinearizedBuilding, optional
+        From :func:`~pounding.linearization.linearize_pair`; computed when omitted.
+    """
+    linearized = _linearized(case, linearized)
+    model = pair_state_space(case, linearized)
+    outputs = contact_output_matrix(case, model)
+    return ContactResponse(case.contact.levels, outputs @ model.covariance() @ outputs.T, "lyapunov")
+
+
+def frequency_response(linearized: LinearizedBuilding, omega) -> np.ndarray:
+    """Complex FRF of the floor displacements relative to the ground per unit
+    ground acceleration [s^2], from Eq. 1 (36-39) and Eq. 19.
+
+    Eq. 19 gives z = c_e i w u / (i w - k_e) per storey, so the storey force is
+    k_dyn(w) u with k_dyn = alpha k + (1 - alpha) k c_e i w / (i w - k_e) + i w c;
+    then (-w^2 M + T^T diag(k_dyn) T) H = -M 1. For one storey |H|^2 is Eq. 22.
+
+    Parameters
+    ----------
+    linearized : LinearizedBuilding
+    omega : array_like
+        Circular frequencies [rad/s].
+
+    Returns
+    -------
+    ndarray, complex, shape omega.shape + (n_storeys,)
+    """
+    omega = np.asarray(omega, dtype=float)
+    building = linearized.building
+    w = omega.reshape(-1, 1)
+    iw = 1j * w
+    k = building.stiffnesses
+    alpha = np.array([s.bouc_wen.alpha for s in building.storeys])
+    hysteretic = linearized.hysteretic
+    # An elastic storey (k_e = 0) has z = c_e u at every frequency, omega = 0 included.
+    with np.errstate(invalid="ignore", divide="ignore"):
+        z_ratio = np.where(hysteretic, linearized.c_e * iw / (iw - linearized.k_e), linearized.c_e + 0j)
+    storey = alpha * k + (1.0 - alpha) * k * z_ratio + iw * building.storey_damping()
+    masses = building.masses
+    N = building.n_storeys
+    if N == 1:
+        response = -masses[0] / (-(w**2) * masses[0] + storey)
+    else:
+        drift = np.eye(N) - np.eye(N, k=-1)
+        dynamic = np.einsum("ji,fj,jk->fik", drift, storey, drift) - (w**2)[:, :, None] * np.diag(masses)
+        response = np.linalg.solve(dynamic, np.broadcast_to(-masses[:, None], (w.shape[0], N, 1)).astype(complex))[..., 0]
+    return response.reshape(omega.shape + (N,))
+
+
+def _contact_frf(case, linearized, omega) -> np.ndarray:
+    """FRFs of the OUTPUTS per unit ground acceleration, shape omega.shape + (6,)."""
+    f1, f2 = _contact_floors(case)
+    h1 = frequency_response(linearized[0], omega)[..., f1]
+    h2 = frequency_response(linearized[1], omega)[..., f2]
+    iw = 1j * np.asarray(omega, dtype=float)
+    return np.stack([h1, h2, iw * h1, iw * h2, iw**2 * h1, iw**2 * h2], axis=-1)
+
+
+def response_frequency(case, linearized=None, rtol: float = 1e-10) -> ContactResponse:
+    """Contact-floor response by frequency-domain integrals (Eq. 17-18, 25).
+
+    E[Y_i Y_j] = int_(-inf)^(inf) H_i conj(H_j) S_g d omega
+               = 2 int_0^inf Re(H_i conj(H_j)) S_g d omega,
+    since H(-w) = conj(H(w)); velocities and accelerations have FRFs i w H and
+    -w^2 H. Integrated adaptively (``scipy.integrate.quad_vec``) over [0, inf)
+    with breakpoints at the natural frequencies of the linearized pair and the
+    filter. A reference for :func:`response_lyapunov`, not fast (~0.1 s).
+
+    Parameters
+    ----------
+    case : Case
+    linearized : tuple of two LinearizedBuilding, optional
+    rtol : float
+        Relative tolerance of the integration (max-norm over the outputs, each
+        scaled to acceleration units).
+    """
+    linearized = _linearized(case, linearized)
+    spectrum = case.excitation.spectrum
+    model = pair_state_space(case, linearized)
+    poles = np.linalg.eigvals(model.matrix)
+    points = np.unique(np.concatenate([np.abs(poles.imag), np.abs(poles)]))
+    points = points[points > 0.0]
+    # Scale displacements and velocities to acceleration units so the
+    # max-norm error control treats every output alike.
+    reference = math.sqrt(np.prod([lb.building.mode_shapes()[0][0] for lb in linearized]))
+    scale = np.array([reference**2, reference**2, reference, reference, 1.0, 1.0])
+    rows, cols = np.triu_indices(6)
+
+    def integrand(w):
+        y = _contact_frf(case, linearized, np.array([w]))[0] * scale
+        return (np.real(y[rows] * np.conj(y[cols])) * spectrum.psd(w)).astype(float)
+
+    upper, _ = quad_vec(integrand, 0.0, np.inf, epsrel=rtol, epsabs=0.0, norm="max", points=points, limit=20000)
+    covariance = np.empty((6, 6))
+    covariance[rows, cols] = covariance[cols, rows] = 2.0 * upper
+    return ContactResponse(case.contact.levels, covariance / np.outer(scale, scale), "frequency")
+
+
+def response(case, linearized=None, method: str = "lyapunov") -> ContactResponse:
+    """Contact-floor response by ``method``: ``"lyapunov"`` (default, fast) or ``"frequency"``."""
+    if method == "lyapunov":
+        return response_lyapunov(case, linearized)
+    if method == "frequency":
+        return response_frequency(case, linearized)
+    raise ValueError(f"method must be 'lyapunov' or 'frequency', got {method!r}")
+
+
+def psd_relative_velocity(case, linearized, omega) -> np.ndarray:
+    """Two-sided PSD of the relative velocity V = v1 - v2 at the contact floors,
+    w^2 |H1 - H2|^2 S_g(w) [m^2/s], whose integral over (-inf, inf) is
+    sigma_V^2 (Eq. 16-18).
+
+    Parameters
+    ----------
+    case : Case
+    linearized : tuple of two LinearizedBuilding, or None to compute it
+    omega : array_like
+        Circular frequencies [rad/s].
+    """
+    linearized = _linearized(case, linearized)
+    omega = np.asarray(omega, dtype=float)
+    y = _contact_frf(case, linearized, omega)
+    return np.abs(y[..., _V1] - y[..., _V2]) ** 2 * case.excitation.spectrum.psd(omega)
+
+
+@dataclass(frozen=True, eq=False)
+class FloorStatistics:
+    """Stationary standard deviations of every floor and storey of both
+    buildings, one array per building, floors and storeys from the ground up.
+
+    Parameters
+    ----------
+    displacement, velocity : tuple of ndarray
+        Floor displacements relative to the ground [m], velocities [m/s].
+    drift, drift_velocity, hysteretic : tuple of ndarray
+        Storey drifts [m], their rates [m/s], hysteretic displacements z [m].
+    """
+
+    displacement: tuple[np.ndarray, np.ndarray]
+    velocity: tuple[np.ndarray, np.ndarray]
+    drift: tuple[np.ndarray, np.ndarray]
+    drift_velocity: tuple[np.ndarray, np.ndarray]
+    hysteretic: tuple[np.ndarray, np.ndarray]
+
+
+def floor_statistics(case, linearized=None) -> FloorStatistics:
+    """Standard deviations of every floor and storey of the linearized pair (Lyapunov route)."""
+    linearized = _linearized(case, linearized)
+    model = pair_state_space(case, linearized)
+    covariance = model.covariance()
+
+    def sigma(rows):
+        return np.sqrt(np.einsum("ij,jk,ik->i", rows, covariance, rows))
+
+    pair = (0, 1)
+    return FloorStatistics(
+        tuple(sigma(model.displacement[b]) for b in pair),
+        tuple(sigma(model.velocity[b]) for b in pair),
+        tuple(sigma(model.drift(b)) for b in pair),
+        tuple(sigma(model.drift_velocity(b)) for b in pair),
+        tuple(sigma(model.hysteretic[b]) for b in pair),
+    )
+
+
+def contact_covariance_history(case, linearized=None, times=None, modulation: str = "bedrock") -> np.ndarray:
+    """Time-varying covariance of :data:`OUTPUTS` under the case's envelope,
+    from rest, by :func:`pounding.peaks.time_varying_covariance`.
+
+    The buildings keep their stationary linearization (the paper's sigma_inf
+    approach); only the excitation is modulated.
+
+    Parameters
+    ----------
+    case : Case
+        Its ``excitation.envelope`` (None: constant 1) modulates the motion.
+    linearized : tuple of two LinearizedBuilding, optional
+    times : array_like, optional
+        Increasing times from the onset [s]; default 0 to the record duration
+        every 0.05 s.
+    modulation : str
+        ``"bedrock"`` (modulated white noise, fast) or ``"ground"`` (Eq. 8, as
+        the records are generated); see :func:`~pounding.peaks.time_varying_covariance`.
+
+    Returns
+    -------
+    ndarray, (n_times, 6, 6)
+    """
+    from .peaks import time_varying_covariance
+
+    linearized = _linearized(case, linearized)
+    if times is None:
+        times = np.arange(0.0, case.excitation.duration + 1e-9, 0.05)
+    model = pair_state_space(case, linearized)
+    outputs = contact_output_matrix(case, model)
+    history = time_varying_covariance(model, case.excitation.envelope, times, modulation=modulation)
+    return np.einsum("ij,tjk,lk->til", outputs, history, outputs)
