@@ -14,7 +14,9 @@ EXIT_BAD_INPUT = 2
 
 _EPILOG = """examples:
   pounding cases
+  pounding estimate section5-T2-0.4
   pounding simulate section5-T2-0.4 --records 300 --seed 1
+  pounding validate --records 300
   pounding simulate my_case.toml --records 50 --json
   pounding dashboard --port 5006
 """
@@ -78,6 +80,35 @@ def _parser() -> argparse.ArgumentParser:
     simulate.add_argument("--seed", type=_non_negative_int, default=0, help="seed of the study (default 0)")
     simulate.add_argument("--tolerance", type=float, default=1e-6, help="relative tolerance of the integrator (default 1e-6)")
     simulate.add_argument("--json", action="store_true", help="print one JSON object (SI units) instead of a table")
+
+    estimate = commands.add_parser(
+        "estimate",
+        help="closed-form expected extreme pounding force (both estimators)",
+        description="Expected extreme pounding force without time histories: this project's gap-aware estimator "
+        "and the paper's method (Rahimi & Soltani 2016, Eq. 12-30) side by side, with the pounding probability and "
+        "the gap needed for a target probability of no pounding.",
+        epilog="examples:\n  pounding estimate section5-T2-0.4\n  pounding estimate case.toml --json --target-probability 0.99",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    estimate.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
+    estimate.add_argument("--target-probability", type=float, default=0.95,
+                          help="target probability of no pounding during the record, in (0, 1) (default 0.95)")
+    estimate.add_argument("--nonstationary", choices=("eq28", "exact"), default="eq28",
+                          help="time-varying variances of a modulated motion: the paper's Eq. 28 (default) or the exact covariance")
+    estimate.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+
+    validate = commands.add_parser(
+        "validate",
+        help="the paper's Tables 1, 2, 5, 6 against this project's Monte Carlo and estimators",
+        description="Recompute the paper's Tables 1, 2, 5 and 6: the paper's columns, this project's Monte Carlo "
+        "and both estimators, for the excitation as printed and with G0 x 4 pi^2; lists the assumptions made "
+        "where the paper is silent.",
+        epilog="examples:\n  pounding validate\n  pounding validate --records 100 --json > tables.json",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    validate.add_argument("--records", type=_positive_int, default=300, help="Monte Carlo records per case (default 300)")
+    validate.add_argument("--seed", type=_non_negative_int, default=1, help="seed of the studies (default 1)")
+    validate.add_argument("--json", action="store_true", help="print one JSON object (forces in N)")
 
     dashboard = commands.add_parser(
         "dashboard",
@@ -143,6 +174,70 @@ def _simulate(args) -> int:
     return 0
 
 
+def _estimate(args) -> int:
+    from .case import load_case
+    from .estimator import estimate
+
+    case = load_case(args.case)
+    result = estimate(case, target_probability=args.target_probability, nonstationary=args.nonstationary)
+    if args.json:
+        print(json.dumps(result.to_dict()))
+        return 0
+    paper = result.paper
+    rules = result.separation_rules
+    print(f"case                        {case.name} ({'stationary' if case.excitation.stationary else 'non-stationary'}, {case.excitation.duration:g} s)")
+    print(f"gap                         {100 * case.contact.gap:.2f} cm")
+    print(f"sigma relative displacement {100 * result.sigma_relative_displacement:.3f} cm")
+    print(f"sigma relative velocity     {result.sigma_relative_velocity:.4f} m/s")
+    print("recommended (gap-aware)")
+    print(f"  expected extreme force    {_format_force(result.force_expected)}")
+    print(f"  expected peak impact v    {result.relative_velocity_expected:.4f} m/s")
+    print(f"  expected impacts          {result.impacts_expected:.2f}")
+    print(f"  pounding probability      {100 * result.pounding_probability:.1f} %")
+    print(f"  gap for {100 * result.target_probability:g} % no pounding  {100 * result.required_gap:.2f} cm"
+          f"   (SRSS {100 * rules['srss']:.2f} cm, ABS {100 * rules['abs']:.2f} cm, DDC {100 * rules['ddc']:.2f} cm)")
+    print("paper (Rahimi & Soltani 2016, Eq. 12-30)")
+    if paper.force_expected is None:
+        print("  expected extreme force    n/a (Eq. 13-14 hold for the Hertz-type laws only)")
+    else:
+        print(f"  expected extreme force    {_format_force(paper.force_expected)}")
+    print(f"  expected extreme velocity {paper.relative_velocity_expected:.4f} m/s   (peak factor {paper.peak_factor:.3f})")
+    print(f"  crossing rate (Eq. 24)    {paper.crossing_rate:.4f} 1/s, effective duration {paper.duration_effective:.2f} s")
+    return 0
+
+
+def _validate(args) -> int:
+    from .validation import ASSUMPTIONS, validate
+
+    bar = _progress_bar(24, sys.stderr.isatty())
+    try:
+        rows = validate(records=args.records, seed=args.seed, progress=(lambda done, total: bar.update(done - bar.n)) if bar else None)
+    finally:
+        if bar is not None:
+            bar.close()
+    if args.json:
+        print(json.dumps({"records": args.records, "seed": args.seed, "rows": [row.to_dict() for row in rows],
+                          "assumptions": list(ASSUMPTIONS), "units": {"force": "N"}}))
+        return 0
+
+    def mn(value):
+        return "   n/a" if value is None else f"{value / 1e6:6.3f}"
+
+    print(f"Expected extreme pounding force [MN]; Monte Carlo: {args.records} records, seed {args.seed}.")
+    current = None
+    for row in rows:
+        if (row.table, row.reading) != current:
+            current = (row.table, row.reading)
+            print(f"\n{row.table}, excitation {row.reading}")
+            print("  T1, T2 (s)   paper exact  paper proposed | Monte Carlo (+- s.e.)  paper's method  recommended")
+        print(f"  1.2, {row.period_2:.1f}      {mn(row.paper_exact)}       {mn(row.paper_proposed)}    |"
+              f"  {mn(row.monte_carlo)} +- {row.monte_carlo_std_error / 1e6:.3f}      {mn(row.paper_estimator)}       {mn(row.recommended_estimator)}")
+    print("\nAssumptions where the paper is silent or misprinted:")
+    for line in ASSUMPTIONS:
+        print(f"  - {line}")
+    return 0
+
+
 def _dashboard(args) -> int:
     from .serve import serve_dashboard
 
@@ -150,7 +245,7 @@ def _dashboard(args) -> int:
     return 0
 
 
-_COMMANDS = {"cases": _cases, "simulate": _simulate, "dashboard": _dashboard}
+_COMMANDS = {"cases": _cases, "estimate": _estimate, "simulate": _simulate, "validate": _validate, "dashboard": _dashboard}
 
 
 def main(argv: list[str] | None = None) -> int:
