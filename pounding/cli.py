@@ -93,8 +93,9 @@ def _parser() -> argparse.ArgumentParser:
     estimate.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
     estimate.add_argument("--target-probability", type=float, default=0.95,
                           help="target probability of no pounding during the record, in (0, 1) (default 0.95)")
-    estimate.add_argument("--nonstationary", choices=("eq28", "exact"), default="eq28",
-                          help="time-varying variances of a modulated motion: the paper's Eq. 28 (default) or the exact covariance")
+    estimate.add_argument("--paper-variance", choices=("eq28", "exact"), default="eq28",
+                          help="the paper's method under an envelope: sigma_V(t) by Eq. 28 (default, as published) "
+                          "or by the exact time-varying covariance")
     estimate.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
 
     validate = commands.add_parser(
@@ -179,7 +180,7 @@ def _estimate(args) -> int:
     from .estimator import estimate
 
     case = load_case(args.case)
-    result = estimate(case, target_probability=args.target_probability, nonstationary=args.nonstationary)
+    result = estimate(case, target_probability=args.target_probability, paper_variance=args.paper_variance)
     if args.json:
         print(json.dumps(result.to_dict()))
         return 0

@@ -1,34 +1,41 @@
 """Closed-form estimates of the expected extreme pounding force, without a
 time-history analysis: the paper's method as published (Section 4, Eq. 12-30,
 with the printing errors of NOTES.md fixed) and this project's gap-aware
-estimator (docs/estimator.md), side by side.
+estimator (derived in docs/estimator.md), side by side.
 
 Both stand on the same statistically linearized pair (Eq. 19-21) and its
-stationary response at the contact floors (Eq. 16-18, 25).
+response at the contact floors (Eq. 16-18, 25).
 
-The recommended estimator treats impacts as upcrossings of the gap by the
-relative displacement X = x1 - x2 (Rice): upcrossings of the level d with an
-approach velocity above v arrive at the rate
+The recommended estimator counts impacts on the gap d by the relative
+displacement X = x1 - x2, seen as a Gaussian process with a Rayleigh envelope
+a and frequency omega = sigma_V / sigma_X:
 
-    nu0+ exp(-d^2 / (2 sigma_X^2)) exp(-v^2 / (2 sigma_V^2)),
+- an impact from envelope a strikes with the free motion's velocity
+  omega sqrt(a^2 - d^2) (energy balance of the approach);
+- after it, the pair separates and returns to the gap having spent only the
+  part of a cycle below the gap: impacts at envelope a recur at the rate
+  omega / (2 (pi - arccos(d / a))) (Zhuravlev's mirror transformation of
+  vibro-impact motion; twice Rice's rate when d << a, Rice's as d -> a);
+- counted as a Poisson process over the record, the largest approach velocity
+  V_max (0 without impact) has P(V_max <= v) = exp(-Lambda(v)), Lambda(v) the
+  expected number of impacts faster than v;
+- each impact peaks at the contact law's own force K(e) F_H(v), F_H the
+  undamped Hertz peak (``contact.impact_peak_force``), so
+  E[F_max] = K(e) F_H(1) E[V_max^1.2].
 
-nu0+ = sigma_V / (2 pi sigma_X), since at an upcrossing the velocity has the
-Rayleigh density. Counted as a Poisson process over the record, the largest
-approach velocity V_max (0 when there is no impact) has
-P(V_max <= v) = exp(-Lambda(v)), Lambda(v) the expected number of impacts
-faster than v. Each impact's peak force is the contact law's own,
-K(e) F_H(v) with F_H the undamped Hertz peak, proportional to v^1.2
-(``contact.impact_peak_force``), so E[F_max] = K F_H(1) E[V_max^1.2].
-Non-stationary motion enters through sigma_X(t), sigma_V(t) in Lambda.
+sigma_X(t) and sigma_V(t) are those of the linearized pair started from rest
+(the records start with the buildings at rest; the slow, yielded response
+builds up over several seconds), modulated by the envelope when there is one.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import cached_property
+from functools import lru_cache
 
 import numpy as np
+from numba import njit
 
 from .case import Case
 from .contact import Contact, impact_peak_force, peak_force_ratio, undamped_peak_force
@@ -37,7 +44,20 @@ from .linearization import linearize_pair
 from .peaks import davenport_peak_factor, envelope_variance, equivalent_stationary
 from .response import ContactResponse, contact_covariance_history, response_lyapunov
 
-__all__ = ["PaperEstimate", "Estimate", "GapCurve", "estimate", "paper_estimate", "force_versus_gap", "DEFAULT_TARGET_PROBABILITY", "NONSTATIONARY_METHODS"]
+__all__ = [
+    "PaperEstimate",
+    "Estimate",
+    "GapCurve",
+    "estimate",
+    "paper_estimate",
+    "force_versus_gap",
+    "DEFAULT_TARGET_PROBABILITY",
+    "PAPER_VARIANCE_METHODS",
+]
+
+PAPER_VARIANCE_METHODS = ("eq28", "exact")
+"""How the paper's method gets sigma_V(t) under an envelope: Eq. 28 or the
+time-varying covariance of the linearized pair."""
 
 DEFAULT_TARGET_PROBABILITY = 0.95
 """Default target probability of *no* pounding during the record [-]."""
@@ -164,15 +184,16 @@ class Estimate:
 # --- the paper's method ------------------------------------------------------
 
 
-def paper_estimate(case: Case, response: ContactResponse, nonstationary: str = "eq28") -> PaperEstimate:
+def paper_estimate(case: Case, linearized, response: ContactResponse, variance_method: str = "eq28") -> PaperEstimate:
     """The published estimator, Eq. 12-30.
 
     Parameters
     ----------
     case : Case
+    linearized : tuple of two LinearizedBuilding
     response : ContactResponse
         Stationary response of the linearized pair at the contact floors.
-    nonstationary : str
+    variance_method : str
         How sigma_V(t) is found for a modulated motion: ``"eq28"``, the paper's
         A(t)^2 sigma_inf^2, or ``"exact"``, the time-varying covariance.
     """
@@ -185,7 +206,13 @@ def paper_estimate(case: Case, response: ContactResponse, nonstationary: str = "
         sigma_equivalent = None
     else:
         times = np.arange(0.0, excitation.duration + 1e-9, _HISTORY_STEP)
-        _, variance = _relative_variances(case, response, times, nonstationary)
+        if variance_method == "eq28":
+            variance = envelope_variance(excitation.envelope, times, sigma_v**2)
+        elif variance_method == "exact":
+            history = contact_covariance_history(case, linearized, times)
+            variance = history[:, 2, 2] + history[:, 3, 3] - 2 * history[:, 2, 3]
+        else:
+            raise CaseError("variance_method", f"must be one of {', '.join(PAPER_VARIANCE_METHODS)}, got {variance_method!r}")
         variance_eq, duration = equivalent_stationary(variance, times, n1=3)  # Eq. 29
         sigma = sigma_equivalent = math.sqrt(variance_eq)
     factor = davenport_peak_factor(rate, duration)  # Eq. 23 / 30
@@ -203,118 +230,141 @@ def paper_estimate(case: Case, response: ContactResponse, nonstationary: str = "
 
 # --- the recommended estimator ----------------------------------------------
 
+_U_MAX = 10.0  # gap / sigma_X and v / sigma_V beyond this: no impact (exp(-50))
+
+
+@lru_cache(maxsize=1)
+def _return_table() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """G(u, rho) = int_rho^inf R exp(-R^2/2) / (2 (pi - atan2(R, u))) dR on a grid.
+
+    With u = d / sigma_X and R = sqrt(a^2 - d^2) / sigma_X, the Rayleigh
+    envelope density times the mirror impact rate, integrated over the
+    envelopes whose impact is faster than v = rho sigma_V. A pure function of
+    two numbers, tabulated once.
+    """
+    u = np.linspace(0.0, _U_MAX, 401)
+    rho = np.linspace(0.0, _U_MAX, 1001)
+    integrand = rho * np.exp(-0.5 * rho**2) / (2.0 * (math.pi - np.arctan2(rho[None, :], u[:, None])))
+    pieces = 0.5 * (integrand[:, 1:] + integrand[:, :-1]) * np.diff(rho)
+    tail = np.concatenate([np.cumsum(pieces[:, ::-1], axis=1)[:, ::-1], np.zeros((u.size, 1))], axis=1)
+    return u, rho, tail
+
+
+@njit(cache=True)
+def _intensity_kernel(gaps, velocities, sigma_x, sigma_v, weights, table, step_u, step_rho):
+    """Lambda(gap, v) = sum_t w_t omega_t exp(-u_t^2 / 2) G(u_t, v / sigma_V(t)),
+    u_t = gap / sigma_X(t), G bilinear in its table; 0 beyond the table."""
+    out = np.zeros((gaps.size, velocities.size))
+    last_u = table.shape[0] - 1
+    last_rho = table.shape[1] - 1
+    for t in range(sigma_x.size):
+        omega_weight = weights[t] * sigma_v[t] / sigma_x[t]
+        for i in range(gaps.size):
+            u = gaps[i] / sigma_x[t]
+            fu = u / step_u
+            if fu >= last_u:
+                continue
+            iu = int(fu)
+            wu = fu - iu
+            factor = omega_weight * math.exp(-0.5 * u * u)
+            for j in range(velocities.size):
+                fr = velocities[j] / sigma_v[t] / step_rho
+                if fr >= last_rho:
+                    continue
+                ir = int(fr)
+                wr = fr - ir
+                g = (table[iu, ir] * (1.0 - wu) + table[iu + 1, ir] * wu) * (1.0 - wr) + (
+                    table[iu, ir + 1] * (1.0 - wu) + table[iu + 1, ir + 1] * wu
+                ) * wr
+                out[i, j] += factor * g
+    return out
+
 
 @dataclass(frozen=True)
 class _Crossings:
-    """sigma_X(t), sigma_V(t) on a time grid with trapezoid weights [s] (one
-    point weighing the duration for a stationary motion).
-
-    Lambda(gap, v), the expected number of impacts faster than v, is
-    sum_t w_t nu0+(t) exp(-q_t / 2) with q_t = gap^2/sigma_X(t)^2 + v^2/sigma_V(t)^2.
-    When both sigmas follow one modulation a(t) (stationary, Eq. 28), that is
-    nu0+ W(q) with W(q) = sum_t w_t exp(-q / (2 a_t^2)) a function of the
-    stationary q alone, tabulated once: a gap curve then costs microseconds.
-    """
+    """sigma_X(t), sigma_V(t) of the linearized pair on a time grid, with
+    trapezoid weights [s]."""
 
     sigma_x: np.ndarray
     sigma_v: np.ndarray
     weights: np.ndarray
 
-    @property
-    def rate(self) -> np.ndarray:
-        return self.sigma_v / (2.0 * math.pi * self.sigma_x)
-
-    @cached_property
-    def _log_w_table(self) -> tuple[np.ndarray, np.ndarray] | None:
-        """(q grid, log W(q)) when X and V share one modulation a(t), else None."""
-        a_x = self.sigma_x / self.sigma_x.max()
-        a_v = self.sigma_v / self.sigma_v.max()
-        if not np.allclose(a_x, a_v, rtol=1e-9, atol=0.0):
-            return None
-        # Beyond q = 200, W < T exp(-100): no impact in any record.
-        grid = np.linspace(0.0, 200.0, 1025)
-        table = np.sum(self.weights * np.exp(-0.5 * grid[:, None] / a_x**2), axis=-1)
-        with np.errstate(divide="ignore"):
-            return grid, np.log(table)
-
     def intensity(self, gaps, velocities) -> np.ndarray:
-        """Lambda(gap, v), shape (gaps, velocities)."""
-        gaps = np.asarray(gaps, dtype=float)[:, None]
-        velocities = np.asarray(velocities, dtype=float)[None, :]
-        table = self._log_w_table
-        if table is None:
-            exponent = -0.5 * ((gaps[..., None] / self.sigma_x) ** 2 + (velocities[..., None] / self.sigma_v) ** 2)
-            return np.sum(self.weights * self.rate * np.exp(exponent), axis=-1)
-        i = int(np.argmax(self.sigma_x))
-        q = (gaps / self.sigma_x[i]) ** 2 + (velocities / self.sigma_v[i]) ** 2
-        if self.weights.size == 1:
-            return self.rate[i] * self.weights[0] * np.exp(-0.5 * q)
-        grid, log_w = table
-        return np.where(q <= grid[-1], self.rate[i] * np.exp(np.interp(q, grid, log_w)), 0.0)
-
-
-NONSTATIONARY_METHODS = ("eq28", "exact")
-
-
-def _relative_variances(case: Case, response: ContactResponse, times: np.ndarray, nonstationary: str):
-    """Variances of X and V at ``times`` under the modulated motion: Eq. 28,
-    A(t)^2 sigma_inf^2, or the exact time-varying covariance of the linearized pair."""
-    if nonstationary == "eq28":
-        return (
-            envelope_variance(case.excitation.envelope, times, response.sigma_relative_displacement**2),
-            envelope_variance(case.excitation.envelope, times, response.sigma_relative_velocity**2),
+        """Lambda(gap, v): expected number of impacts faster than v, shape (gaps, velocities)."""
+        u_grid, rho_grid, table = _return_table()
+        return _intensity_kernel(
+            np.ascontiguousarray(gaps, dtype=float).ravel(),
+            np.ascontiguousarray(velocities, dtype=float).ravel(),
+            self.sigma_x,
+            self.sigma_v,
+            self.weights,
+            table,
+            u_grid[1],
+            rho_grid[1],
         )
-    if nonstationary == "exact":
-        history = contact_covariance_history(case, None, times)
-        return (
-            history[:, 0, 0] + history[:, 1, 1] - 2 * history[:, 0, 1],
-            history[:, 2, 2] + history[:, 3, 3] - 2 * history[:, 2, 3],
-        )
-    raise CaseError("nonstationary", f"must be one of {', '.join(NONSTATIONARY_METHODS)}, got {nonstationary!r}")
 
 
-def _crossings(case: Case, response: ContactResponse, nonstationary: str) -> _Crossings:
+_STATIONARY_STEP = 0.25  # [s] time grid of the build-up from rest (it takes seconds)
+_MODULATED_STEP = 0.25  # [s] time grid under an envelope (which varies over seconds)
+
+
+def _crossings(case: Case, linearized) -> _Crossings:
+    """sigma_X(t), sigma_V(t) from rest: the ground motion switched on at t = 0
+    on buildings at rest (stationary case), or modulated by the envelope."""
     excitation = case.excitation
-    if excitation.stationary:
-        return _Crossings(
-            np.array([response.sigma_relative_displacement]),
-            np.array([response.sigma_relative_velocity]),
-            np.array([excitation.duration]),
-        )
-    times = np.arange(0.0, excitation.duration + 1e-9, _HISTORY_STEP)
-    variance_x, variance_v = _relative_variances(case, response, times, nonstationary)
-    # Trapezoid weights; instants with no response yet carry none.
-    weights = np.full(times.size, _HISTORY_STEP)
-    weights[[0, -1]] *= 0.5
+    step = _STATIONARY_STEP if excitation.stationary else _MODULATED_STEP
+    times = np.arange(0.0, excitation.duration + 1e-9, step)
+    if times[-1] < excitation.duration - 1e-9:
+        times = np.append(times, excitation.duration)
+    modulation = "ground" if excitation.stationary else "bedrock"
+    history = contact_covariance_history(case, linearized, times, modulation=modulation)
+    variance_x = history[:, 0, 0] + history[:, 1, 1] - 2 * history[:, 0, 1]
+    variance_v = history[:, 2, 2] + history[:, 3, 3] - 2 * history[:, 2, 3]
+    weights = np.concatenate([[0.5 * (times[1] - times[0])], 0.5 * (times[2:] - times[:-2]), [0.5 * (times[-1] - times[-2])]])
     alive = (variance_x > 1e-30) & (variance_v > 1e-30)
-    return _Crossings(np.sqrt(variance_x[alive]), np.sqrt(variance_v[alive]), weights[alive])
+    return _merged(np.sqrt(variance_x[alive]), np.sqrt(variance_v[alive]), weights[alive])
 
 
-def _expected_power_of_maximum(crossings: _Crossings, gaps: np.ndarray, power: float) -> np.ndarray:
-    """E[V_max^power] for each gap, V_max = 0 without impact: the integral of
-    P(V_max^power > s) = 1 - exp(-Lambda(s^(1/power))) over s >= 0."""
-    v_top = crossings.sigma_v.max() * (math.sqrt(2.0 * math.log(max(crossings.intensity(np.zeros(1), np.zeros(1))[0, 0], 1.0))) + 7.0)
-    s = np.linspace(0.0, v_top**power, 401)
-    survival = -np.expm1(-crossings.intensity(gaps, s ** (1.0 / power)))
-    return np.trapezoid(survival, s, axis=-1)
+def _merged(sigma_x: np.ndarray, sigma_v: np.ndarray, weights: np.ndarray, tolerance: float = 1e-4) -> _Crossings:
+    """Join consecutive instants whose sigmas agree to ``tolerance``: once the
+    response has built up, a stationary record is one instant of weight T - t."""
+    groups = [[sigma_x[0], sigma_v[0], weights[0]]]
+    for x, v, w in zip(sigma_x[1:], sigma_v[1:], weights[1:]):
+        group = groups[-1]
+        if abs(x / group[0] - 1.0) < tolerance and abs(v / group[1] - 1.0) < tolerance:
+            group[2] += w
+        else:
+            groups.append([x, v, w])
+    x, v, w = np.array(groups).T
+    return _Crossings(np.ascontiguousarray(x), np.ascontiguousarray(v), np.ascontiguousarray(w))
+
+
+def _expected_powers_of_maximum(crossings: _Crossings, gaps: np.ndarray, powers: tuple[float, ...]) -> np.ndarray:
+    """E[V_max^p] for each gap and power, V_max = 0 without impact: the
+    integral of p v^(p-1) P(V_max > v) = p v^(p-1) (1 - exp(-Lambda(v))) over
+    v >= 0. Shape (powers, gaps)."""
+    v = np.linspace(0.0, _U_MAX * crossings.sigma_v.max(), 401)
+    survival = -np.expm1(-crossings.intensity(gaps, v))
+    return np.array([np.trapezoid(p * v ** (p - 1.0) * survival, v, axis=-1) for p in powers])
 
 
 def _required_gap(crossings: _Crossings, target_probability: float) -> float:
-    """Smallest gap with P(no impact) = exp(-Lambda(gap, 0)) >= target."""
+    """Smallest gap with P(no impact) = exp(-Lambda(gap, 0)) >= target:
+    bracketed on a grid, then bisected."""
     allowed = -math.log(target_probability)
-
-    def impacts(gap: float) -> float:
-        return float(crossings.intensity(np.array([gap]), np.zeros(1))[0, 0])
-
-    if impacts(0.0) <= allowed:
+    gaps = np.linspace(0.0, _U_MAX * crossings.sigma_x.max(), 257)
+    impacts = crossings.intensity(gaps, np.zeros(1))[:, 0]
+    if impacts[0] <= allowed:
         return 0.0
-    low, high = 0.0, crossings.sigma_x.max()
-    while impacts(high) > allowed:
-        low, high = high, 2.0 * high
-    for _ in range(60):
+    above = np.flatnonzero(impacts > allowed)[-1]
+    low, high = gaps[above], gaps[above + 1]
+    for _ in range(40):
         middle = 0.5 * (low + high)
-        low, high = (middle, high) if impacts(middle) > allowed else (low, middle)
-    return high
+        if crossings.intensity(np.array([middle]), np.zeros(1))[0, 0] > allowed:
+            low = middle
+        else:
+            high = middle
+    return float(high)
 
 
 def _separation_rules(case: Case, response: ContactResponse) -> dict:
@@ -350,7 +400,7 @@ def _check_probability(target_probability: float) -> None:
 
 
 def estimate(
-    case: Case, target_probability: float = DEFAULT_TARGET_PROBABILITY, linearized=None, nonstationary: str = "eq28"
+    case: Case, target_probability: float = DEFAULT_TARGET_PROBABILITY, linearized=None, paper_variance: str = "eq28"
 ) -> Estimate:
     """Expected extreme pounding force of ``case`` by both closed forms.
 
@@ -361,24 +411,23 @@ def estimate(
         Probability of no pounding the ``required_gap`` must give [-].
     linearized : tuple of two LinearizedBuilding, optional
         Reuse a linearization (it does not depend on the gap).
-    nonstationary : str
-        For a modulated motion, the time-varying variances: ``"eq28"``
-        (A(t)^2 sigma_inf^2, instant) or ``"exact"`` (the linearized pair's
-        covariance equation, under a second).
+    paper_variance : str
+        For the paper's method under an envelope: ``"eq28"`` (as published)
+        or ``"exact"`` (see :data:`PAPER_VARIANCE_METHODS`).
     """
     _check_probability(target_probability)
     linearized = linearized or linearize_pair(case)
     response = response_lyapunov(case, linearized)
-    crossings = _crossings(case, response, nonstationary)
+    crossings = _crossings(case, linearized)
     contact = case.contact
     gap = np.array([contact.gap])
-    power = _exponent(contact)
     unit_peak = impact_peak_force(contact, 1.0, case.reduced_mass)
     impacts = float(crossings.intensity(gap, np.zeros(1))[0, 0])
+    velocity_power, velocity = _expected_powers_of_maximum(crossings, gap, (_exponent(contact), 1.0))[:, 0]
     return Estimate(
         case=case,
-        force_expected=float(unit_peak * _expected_power_of_maximum(crossings, gap, power)[0]),
-        relative_velocity_expected=float(_expected_power_of_maximum(crossings, gap, 1.0)[0]),
+        force_expected=float(unit_peak * velocity_power),
+        relative_velocity_expected=float(velocity),
         sigma_relative_displacement=response.sigma_relative_displacement,
         sigma_relative_velocity=response.sigma_relative_velocity,
         impacts_expected=impacts,
@@ -388,7 +437,7 @@ def estimate(
         upcrossing_rate=response.upcrossing_rate,
         peak_force_ratio=peak_force_ratio(contact.model, contact.restitution),
         separation_rules=_separation_rules(case, response),
-        paper=paper_estimate(case, response, nonstationary),
+        paper=paper_estimate(case, linearized, response, paper_variance),
         response=response,
     )
 
@@ -406,7 +455,7 @@ class GapCurve:
     paper_force_expected: float | None
 
 
-def force_versus_gap(case: Case, gaps, linearized=None, nonstationary: str = "eq28") -> GapCurve:
+def force_versus_gap(case: Case, gaps, linearized=None) -> GapCurve:
     """The recommended estimate over many gaps; the linearization and the
     response statistics are computed once."""
     gaps = np.asarray(gaps, dtype=float).ravel()
@@ -414,8 +463,8 @@ def force_versus_gap(case: Case, gaps, linearized=None, nonstationary: str = "eq
         raise CaseError("gaps", "must be finite numbers >= 0 m")
     linearized = linearized or linearize_pair(case)
     response = response_lyapunov(case, linearized)
-    crossings = _crossings(case, response, nonstationary)
+    crossings = _crossings(case, linearized)
     contact = case.contact
     impacts = crossings.intensity(gaps, np.zeros(1))[:, 0]
-    force = impact_peak_force(contact, 1.0, case.reduced_mass) * _expected_power_of_maximum(crossings, gaps, _exponent(contact))
-    return GapCurve(gaps, force, -np.expm1(-impacts), impacts, paper_estimate(case, response, nonstationary).force_expected)
+    force = impact_peak_force(contact, 1.0, case.reduced_mass) * _expected_powers_of_maximum(crossings, gaps, (_exponent(contact),))[0]
+    return GapCurve(gaps, force, -np.expm1(-impacts), impacts, paper_estimate(case, linearized, response).force_expected)

@@ -237,6 +237,8 @@ def time_varying_covariance(model: StateSpace, envelope, times, modulation: str 
         raise CaseError("times", "must be a one-dimensional increasing array")
     A, Q = model.matrix, model.noise_covariance
     values = _envelope_values(envelope, times)
+    if envelope is None and modulation == "ground":
+        return _switched_on(model, times)
     if modulation == "bedrock":
         return _bedrock(A, Q, times, values**2)
     if modulation == "ground":
@@ -261,6 +263,29 @@ def _bedrock(A, Q, times, forcing):
         end = start + slope * h * stationary
         covariance = end + propagator @ (covariance - start) @ propagator.T
         out[k + 1] = covariance
+    return out
+
+
+def _switched_on(model: StateSpace, times):
+    """A stationary ground motion acting from ``times[0]`` on buildings at rest
+    (the filter already stationary): a time-invariant system, so
+    P(t) = P_s + exp(A t) (P_0 - P_s) exp(A^T t), stepped with one propagator
+    per distinct step."""
+    A, Q = model.matrix, model.noise_covariance
+    stationary = lyapunov_covariance(A, Q)
+    f = model.filter_states
+    deviation = -stationary.copy()
+    deviation[f, f] = 0.0  # the filter starts in its stationary state
+    out = np.empty((times.size,) + A.shape)
+    out[0] = stationary + deviation
+    propagators = {}
+    for k, h in enumerate(np.diff(times)):
+        key = round(h, 12)
+        if key not in propagators:
+            propagators[key] = expm(A * h)
+        propagator = propagators[key]
+        deviation = propagator @ deviation @ propagator.T
+        out[k + 1] = stationary + deviation
     return out
 
 

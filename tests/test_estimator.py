@@ -1,0 +1,113 @@
+"""The closed-form estimators: the paper's chain of equations, the gap-aware
+quantities, and the linearized buildings against the nonlinear ones."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from pounding import CaseError, load_case, simulate_record
+from pounding.estimator import estimate, force_versus_gap
+from pounding.linearization import linearize_pair
+from pounding.peaks import davenport_peak_factor
+from pounding.response import floor_statistics
+
+
+def _with(case, gap=None, restitution=None):
+    contact = case.contact
+    if gap is not None:
+        contact = dataclasses.replace(contact, gap=gap)
+    if restitution is not None:
+        contact = dataclasses.replace(contact, restitution=restitution)
+    return dataclasses.replace(case, contact=contact)
+
+
+@pytest.mark.parametrize("period_2", ["0.4", "0.6", "0.8"])
+def test_linearized_sigma_is_close_to_the_nonlinear_buildings(period_2):
+    """Section 5 buildings without contact: the statistically linearized
+    (stationary) sigma_x of each building within 15 % of the nonlinear time
+    histories' once stationary (records of 120 s, the first 30 s left out)."""
+    case = _with(load_case(f"section5-T2-{period_2}"), gap=10.0)
+    case = dataclasses.replace(case, excitation=dataclasses.replace(case.excitation, duration=120.0))
+    statistics = floor_statistics(case, linearize_pair(case))
+    mean_squares = []
+    for index in range(16):
+        history = simulate_record(case, seed=11, index=index)
+        keep = history.time > 30.0
+        time = history.time[keep]
+        d = history.displacement[keep]
+        mean_squares.append(np.trapezoid(d**2, time, axis=0) / (time[-1] - time[0]))
+    simulated = np.sqrt(np.mean(mean_squares, axis=0))
+    linearized = np.array([statistics.displacement[0][0], statistics.displacement[1][0]])
+    np.testing.assert_allclose(linearized, simulated, rtol=0.15)
+
+
+def test_paper_chain_follows_eq23_24_and_14():
+    case = load_case("section5-T2-0.4")
+    result = estimate(case)
+    paper = result.paper
+    # Eq. 24: twice Rice's rate of the relative displacement.
+    assert paper.crossing_rate == pytest.approx(result.sigma_relative_velocity / (np.pi * result.sigma_relative_displacement))
+    assert paper.peak_factor == pytest.approx(davenport_peak_factor(paper.crossing_rate, 20.0))
+    assert paper.relative_velocity_expected == pytest.approx(paper.peak_factor * result.sigma_relative_velocity)
+    # Eq. 14: F = beta delta^1.5 with delta from Eq. 13 at e * delta_dot_e.
+    m = case.reduced_mass
+    beta = case.contact.stiffness
+    delta = (5 * m * (0.65 * paper.relative_velocity_expected) ** 2 / (4 * beta)) ** 0.4
+    assert paper.force_expected == pytest.approx(beta * delta**1.5, rel=1e-12)
+    assert paper.penetration_expected == pytest.approx(delta, rel=1e-12)
+
+
+def test_paper_force_ignores_the_gap_and_scales_as_e_to_the_1_2():
+    case = load_case("section5-T2-0.6")
+    near = estimate(_with(case, gap=0.0)).paper.force_expected
+    far = estimate(_with(case, gap=0.04)).paper.force_expected
+    assert near == pytest.approx(far, rel=1e-12)
+    low = estimate(_with(case, restitution=0.5)).paper.force_expected
+    high = estimate(_with(case, restitution=0.8)).paper.force_expected
+    assert high / low == pytest.approx((0.8 / 0.5) ** 1.2, rel=1e-9)
+
+
+def test_paper_equivalent_stationary_process_for_modulated_motion():
+    stationary = estimate(load_case("section5-T2-0.4"))
+    modulated = estimate(load_case("section5-T2-0.4-nonstationary"))
+    paper = modulated.paper
+    # Same buildings and spectrum: the same sigma_inf (Eq. 26-28).
+    assert modulated.sigma_relative_velocity == pytest.approx(stationary.sigma_relative_velocity, rel=1e-9)
+    assert paper.sigma_relative_velocity_equivalent < modulated.sigma_relative_velocity
+    assert 0 < paper.duration_effective < 40.0
+    exact = estimate(load_case("section5-T2-0.4-nonstationary"), paper_variance="exact").paper
+    # Eq. 28's shortcut against the time-varying covariance: a few per cent.
+    assert paper.force_expected == pytest.approx(exact.force_expected, rel=0.04)
+
+
+def test_required_gap_gives_the_target_probability():
+    case = load_case("section5-T2-0.8")
+    result = estimate(case, target_probability=0.9)
+    at_gap = estimate(_with(case, gap=result.required_gap), target_probability=0.9)
+    assert 1 - at_gap.pounding_probability == pytest.approx(0.9, abs=1e-6)
+    stricter = estimate(case, target_probability=0.99)
+    assert stricter.required_gap > result.required_gap > case.contact.gap
+
+
+def test_force_and_probability_fall_with_the_gap():
+    case = load_case("section5-T2-0.4-nonstationary")
+    gaps = np.linspace(0.0, 0.3, 61)
+    curve = force_versus_gap(case, gaps)
+    assert np.all(np.diff(curve.force_expected) < 0)
+    assert np.all(np.diff(curve.pounding_probability) <= 0)
+    assert curve.pounding_probability[-1] < 0.01
+    single = estimate(_with(case, gap=gaps[10]))
+    assert curve.force_expected[10] == pytest.approx(single.force_expected, rel=1e-9)
+    assert curve.pounding_probability[10] == pytest.approx(single.pounding_probability, rel=1e-9)
+
+
+@pytest.mark.parametrize("value", [0.0, 1.0, -0.2, 1.5])
+def test_bad_target_probability_is_named(value):
+    with pytest.raises(CaseError, match="target_probability"):
+        estimate(load_case("section5-T2-0.4"), target_probability=value)
+
+
+def test_bad_gaps_are_named():
+    with pytest.raises(CaseError, match="gaps"):
+        force_versus_gap(load_case("section5-T2-0.4"), [0.01, -0.01])
