@@ -103,6 +103,8 @@ def test_every_preset_loads(name):
     t2 = float(name.split("T2-")[1].split("-")[0])
     assert case.buildings[1].periods[0] == pytest.approx(t2, rel=1e-3)
     assert case.excitation.stationary == ("nonstationary" not in name)
+    expected_g0 = 65.03e-4 * (4 * math.pi**2 if name.endswith("G0x4pi2") else 1.0)
+    assert case.excitation.spectrum.G0 == pytest.approx(expected_g0, rel=1e-6)
 
 
 def test_presets_cover_the_paper():
@@ -111,6 +113,7 @@ def test_presets_cover_the_paper():
         for t2 in ("0.4", "0.6", "0.8"):
             assert f"section{section}-T2-{t2}" in names
             assert f"section{section}-T2-{t2}-nonstationary" in names
+            assert f"section{section}-T2-{t2}-G0x4pi2" in names
 
 
 def _bad(path: list, value):
