@@ -42,7 +42,7 @@ from .contact import Contact, impact_peak_force, peak_force_ratio, undamped_peak
 from .errors import CaseError
 from .linearization import linearize_pair
 from .peaks import davenport_peak_factor, envelope_variance, equivalent_stationary
-from .response import ContactResponse, contact_covariance_history, response_lyapunov
+from .response import ContactResponse, bandwidth_relative_displacement, contact_covariance_history, response_lyapunov
 
 __all__ = [
     "PaperEstimate",
@@ -251,9 +251,11 @@ def _return_table() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 @njit(cache=True)
-def _intensity_kernel(gaps, velocities, sigma_x, sigma_v, weights, table, step_u, step_rho):
-    """Lambda(gap, v) = sum_t w_t omega_t exp(-u_t^2 / 2) G(u_t, v / sigma_V(t)),
-    u_t = gap / sigma_X(t), G bilinear in its table; 0 beyond the table."""
+def _intensity_kernel(gaps, velocities, sigma_x, sigma_v, weights, clumping, table, step_u, step_rho):
+    """Lambda(gap, v) = sum_t w_t omega_t exp(-u_t^2 / 2) G(u_t, rho_t) c(r_t),
+    u_t = gap / sigma_X(t), rho_t = v / sigma_V(t), r_t^2 = u_t^2 + rho_t^2,
+    with G bilinear in its table (0 beyond it) and Vanmarcke's clump factor
+    c(r) = min(1, (1 - exp(-clumping r)) / (1 - exp(-r^2 / 2)))."""
     out = np.zeros((gaps.size, velocities.size))
     last_u = table.shape[0] - 1
     last_rho = table.shape[1] - 1
@@ -268,7 +270,8 @@ def _intensity_kernel(gaps, velocities, sigma_x, sigma_v, weights, table, step_u
             wu = fu - iu
             factor = omega_weight * math.exp(-0.5 * u * u)
             for j in range(velocities.size):
-                fr = velocities[j] / sigma_v[t] / step_rho
+                rho = velocities[j] / sigma_v[t]
+                fr = rho / step_rho
                 if fr >= last_rho:
                     continue
                 ir = int(fr)
@@ -276,6 +279,9 @@ def _intensity_kernel(gaps, velocities, sigma_x, sigma_v, weights, table, step_u
                 g = (table[iu, ir] * (1.0 - wu) + table[iu + 1, ir] * wu) * (1.0 - wr) + (
                     table[iu, ir + 1] * (1.0 - wu) + table[iu + 1, ir + 1] * wu
                 ) * wr
+                r = math.sqrt(u * u + rho * rho)
+                if r > 1e-9:
+                    g *= min(1.0, -math.expm1(-clumping * r) / -math.expm1(-0.5 * r * r))
                 out[i, j] += factor * g
     return out
 
@@ -288,6 +294,7 @@ class _Crossings:
     sigma_x: np.ndarray
     sigma_v: np.ndarray
     weights: np.ndarray
+    bandwidth: float = 1.0
 
     def intensity(self, gaps, velocities) -> np.ndarray:
         """Lambda(gap, v): expected number of impacts faster than v, shape (gaps, velocities)."""
@@ -298,6 +305,7 @@ class _Crossings:
             self.sigma_x,
             self.sigma_v,
             self.weights,
+            math.sqrt(math.pi / 2.0) * self.bandwidth**1.2,
             table,
             u_grid[1],
             rho_grid[1],
@@ -322,10 +330,11 @@ def _crossings(case: Case, linearized) -> _Crossings:
     variance_v = history[:, 2, 2] + history[:, 3, 3] - 2 * history[:, 2, 3]
     weights = np.concatenate([[0.5 * (times[1] - times[0])], 0.5 * (times[2:] - times[:-2]), [0.5 * (times[-1] - times[-2])]])
     alive = (variance_x > 1e-30) & (variance_v > 1e-30)
-    return _merged(np.sqrt(variance_x[alive]), np.sqrt(variance_v[alive]), weights[alive])
+    bandwidth = bandwidth_relative_displacement(case, linearized)
+    return _merged(np.sqrt(variance_x[alive]), np.sqrt(variance_v[alive]), weights[alive], bandwidth)
 
 
-def _merged(sigma_x: np.ndarray, sigma_v: np.ndarray, weights: np.ndarray, tolerance: float = 1e-4) -> _Crossings:
+def _merged(sigma_x: np.ndarray, sigma_v: np.ndarray, weights: np.ndarray, bandwidth: float, tolerance: float = 1e-4) -> _Crossings:
     """Join consecutive instants whose sigmas agree to ``tolerance``: once the
     response has built up, a stationary record is one instant of weight T - t."""
     groups = [[sigma_x[0], sigma_v[0], weights[0]]]
@@ -336,7 +345,7 @@ def _merged(sigma_x: np.ndarray, sigma_v: np.ndarray, weights: np.ndarray, toler
         else:
             groups.append([x, v, w])
     x, v, w = np.array(groups).T
-    return _Crossings(np.ascontiguousarray(x), np.ascontiguousarray(v), np.ascontiguousarray(w))
+    return _Crossings(np.ascontiguousarray(x), np.ascontiguousarray(v), np.ascontiguousarray(w), bandwidth)
 
 
 def _expected_powers_of_maximum(crossings: _Crossings, gaps: np.ndarray, powers: tuple[float, ...]) -> np.ndarray:

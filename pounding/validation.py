@@ -10,14 +10,16 @@ the authors' PSD or generator), a conjecture tested here, not assumed.
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from .case import load_case
+from .case import Case, load_case
 from .estimator import estimate
 from .simulation import simulate
+from .structures import BoucWen, Building, Storey
 
-__all__ = ["PAPER_TABLES", "READINGS", "ASSUMPTIONS", "ValidationRow", "validate"]
+__all__ = ["PAPER_TABLES", "READINGS", "ASSUMPTIONS", "ValidationRow", "validate", "AccuracyRow", "accuracy", "accuracy_cases"]
 
 PAPER_TABLES = {
     # table: (preset pattern, {T2: (paper "exact" MN, paper "proposed" MN)})
@@ -112,4 +114,126 @@ def validate(
         )
         if progress is not None:
             progress(done, len(jobs))
+    return rows
+
+
+# --- accuracy of the estimators over a wide grid ------------------------------
+
+
+def _vary(case: Case, *, g0: float = 1.0, gap: float | None = None, restitution: float | None = None,
+          periods: tuple[float | None, float | None] = (None, None), elastic: bool = False, name: str = "") -> Case:
+    """``case`` with its G0 scaled, its gap [m] and restitution set, the period
+    of a one-storey building changed (stiffness = m omega^2), or every storey
+    made linear elastic."""
+    excitation = case.excitation
+    excitation = dataclasses.replace(excitation, spectrum=dataclasses.replace(excitation.spectrum, G0=excitation.spectrum.G0 * g0))
+    contact = dataclasses.replace(
+        case.contact,
+        gap=case.contact.gap if gap is None else gap,
+        restitution=case.contact.restitution if restitution is None else restitution,
+    )
+    buildings = []
+    for building, period in zip(case.buildings, periods):
+        storeys = building.storeys
+        if period is not None:
+            (storey,) = storeys
+            storeys = (dataclasses.replace(storey, stiffness=storey.mass * (2 * math.pi / period) ** 2),)
+        if elastic:
+            storeys = tuple(dataclasses.replace(s, bouc_wen=BoucWen(alpha=1.0)) for s in storeys)
+        buildings.append(dataclasses.replace(building, storeys=storeys))
+    return dataclasses.replace(case, excitation=excitation, contact=contact, buildings=tuple(buildings), name=name or case.name)
+
+
+def _mdof_case() -> Case:
+    """A three-storey building beside a two-storey one, meeting at the second
+    floor: the shear-building extension of Section 7 (Eq. 36-39)."""
+    paper = load_case("section5-T2-0.4")
+    bouc_wen = paper.buildings[0].storeys[0].bouc_wen
+    tall = Building(tuple(Storey(2.0e4, k, bouc_wen) for k in (3.0e6, 2.6e6, 2.2e6)), damping_ratio=0.05)
+    low = Building(tuple(Storey(1.8e4, k, bouc_wen) for k in (8.0e6, 7.0e6)), damping_ratio=0.05)
+    contact = dataclasses.replace(paper.contact, levels=(2, 2), gap=0.01)
+    return Case(paper.excitation, (tall, low), contact, name="mdof-3+2-floor2")
+
+
+def accuracy_cases() -> list[Case]:
+    """The grid on which the estimators are checked against Monte Carlo:
+    periods 0.2-2 s, gaps 0-5 cm, restitution 0.4-0.9, G0 x 0.25 to x 40,
+    stationary and modulated, SDOF, unequal heights, MDOF, elastic buildings."""
+    s5 = {t: load_case(f"section5-T2-{t}") for t in ("0.4", "0.6", "0.8")}
+    s5n = load_case("section5-T2-0.4-nonstationary")
+    cases = [
+        s5["0.4"], s5["0.6"], s5["0.8"], s5n, load_case("section5-T2-0.8-nonstationary"),
+        load_case("section6-T2-0.4"), load_case("section6-T2-0.8"), load_case("section6-T2-0.4-nonstationary"),
+        _vary(s5["0.4"], g0=0.25, name="s5-T2-0.4 G0x0.25"),
+        _vary(s5["0.8"], g0=0.25, name="s5-T2-0.8 G0x0.25"),
+        _vary(s5["0.4"], g0=4.0, name="s5-T2-0.4 G0x4"),
+        _vary(s5["0.4"], g0=4 * math.pi**2, name="s5-T2-0.4 G0x4pi2"),
+        _vary(s5["0.8"], g0=4 * math.pi**2, name="s5-T2-0.8 G0x4pi2"),
+        _vary(s5["0.4"], restitution=0.4, name="s5-T2-0.4 e0.4"),
+        _vary(s5["0.4"], restitution=0.9, name="s5-T2-0.4 e0.9"),
+        _vary(s5["0.4"], gap=0.0, name="s5-T2-0.4 gap0"),
+        _vary(s5["0.4"], gap=0.05, name="s5-T2-0.4 gap5cm"),
+        _vary(s5["0.8"], gap=0.03, name="s5-T2-0.8 gap3cm"),
+        _vary(s5["0.4"], g0=10.0, gap=0.05, name="s5-T2-0.4 G0x10 gap5cm"),
+        _vary(s5["0.4"], periods=(None, 0.2), name="T1 1.2 T2 0.2"),
+        _vary(s5["0.4"], periods=(None, 2.0), name="T1 1.2 T2 2.0"),
+        _vary(s5["0.4"], g0=4.0, periods=(0.3, 0.2), name="T1 0.3 T2 0.2 G0x4"),
+        _vary(s5["0.4"], g0=0.25, gap=0.0, restitution=0.9, periods=(None, 2.0), name="T2 2.0 G0x0.25 gap0 e0.9"),
+        _vary(load_case("section6-T2-0.6"), g0=10.0, restitution=0.4, name="s6-T2-0.6 G0x10 e0.4"),
+        _vary(s5["0.6"], gap=0.02, restitution=0.9, name="s5-T2-0.6 gap2cm e0.9"),
+        _mdof_case(),
+        _vary(s5["0.4"], elastic=True, gap=0.10, name="elastic 1.2/0.4 gap10cm"),
+        _vary(s5["0.4"], elastic=True, gap=0.06, name="elastic 1.2/0.4 gap6cm"),
+        _vary(s5["0.4"], elastic=True, gap=0.03, periods=(0.5, 0.3), name="elastic 0.5/0.3 gap3cm"),
+        _vary(s5n, elastic=True, gap=0.06, name="elastic 1.2/0.4 gap6cm modulated"),
+    ]
+    return cases
+
+
+@dataclass(frozen=True)
+class AccuracyRow:
+    """Monte Carlo against both estimators on one case; forces [N]."""
+
+    case: str
+    gap_over_sigma: float
+    monte_carlo: float
+    monte_carlo_std_error: float
+    recommended: float
+    paper: float | None
+    pounding_fraction: float
+    pounding_probability: float
+
+    @property
+    def recommended_error(self) -> float:
+        return self.recommended / self.monte_carlo - 1.0
+
+    @property
+    def paper_error(self) -> float | None:
+        return None if self.paper is None else self.paper / self.monte_carlo - 1.0
+
+
+def accuracy(
+    cases: list[Case] | None = None, records: int = 300, seed: int = 11, progress: Callable[[int, int], None] | None = None
+) -> list[AccuracyRow]:
+    """Both estimators against this project's Monte Carlo on ``cases``
+    (default :func:`accuracy_cases`)."""
+    cases = accuracy_cases() if cases is None else cases
+    rows = []
+    for done, case in enumerate(cases, start=1):
+        result = simulate(case, records=records, seed=seed)
+        closed_form = estimate(case)
+        rows.append(
+            AccuracyRow(
+                case=case.name,
+                gap_over_sigma=case.contact.gap / closed_form.sigma_relative_displacement,
+                monte_carlo=result.force_max_mean,
+                monte_carlo_std_error=result.force_max_std_error,
+                recommended=closed_form.force_expected,
+                paper=closed_form.paper.force_expected,
+                pounding_fraction=result.pounding_fraction,
+                pounding_probability=closed_form.pounding_probability,
+            )
+        )
+        if progress is not None:
+            progress(done, len(cases))
     return rows
