@@ -131,6 +131,9 @@ class Estimate:
         Gaps by the SRSS, ABS and DDC rules from the expected peak
         displacements of the contact floors [m].
     paper : PaperEstimate
+    warnings : tuple of str
+        Where the case lies outside the range in which the estimate was found
+        within 10 % of Monte Carlo (docs/estimator.md).
     """
 
     case: Case
@@ -147,6 +150,7 @@ class Estimate:
     separation_rules: dict
     paper: PaperEstimate
     response: ContactResponse = field(repr=False)
+    warnings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict:
         """JSON-ready, SI units."""
@@ -164,6 +168,7 @@ class Estimate:
             "upcrossing_rate": self.upcrossing_rate,
             "peak_force_ratio": self.peak_force_ratio,
             "separation_rules": dict(self.separation_rules),
+            "warnings": list(self.warnings),
             "gap": self.case.contact.gap,
             "duration": self.case.excitation.duration,
             "paper": {
@@ -403,6 +408,21 @@ def _separation_rules(case: Case, response: ContactResponse) -> dict:
     }
 
 
+TAIL_WARNING = (
+    "the gap exceeds sigma_X of the relative displacement: pounding is rare and the estimate rests on the "
+    "Gaussian tail of the linearized response, where it was measured {range} off Monte Carlo "
+    "(docs/estimator.md); check it with `pounding simulate`"
+)
+
+
+def _warnings(case: Case, linearized, response: ContactResponse) -> tuple[str, ...]:
+    """The measured limits of the recommended estimator that apply to ``case``."""
+    if case.contact.gap <= response.sigma_relative_displacement:
+        return ()
+    yielding = any(np.any(building.k_e != 0.0) for building in linearized)
+    return (TAIL_WARNING.format(range="from -55 % to +150 %" if yielding else "up to +30 %"),)
+
+
 def _check_probability(target_probability: float) -> None:
     if not (isinstance(target_probability, float | int) and 0.0 < target_probability < 1.0):
         raise CaseError("target_probability", f"must lie in (0, 1), got {target_probability!r}")
@@ -448,6 +468,7 @@ def estimate(
         separation_rules=_separation_rules(case, response),
         paper=paper_estimate(case, linearized, response, paper_variance),
         response=response,
+        warnings=_warnings(case, linearized, response),
     )
 
 

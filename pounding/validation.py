@@ -157,8 +157,9 @@ def _mdof_case() -> Case:
 
 def accuracy_cases() -> list[Case]:
     """The grid on which the estimators are checked against Monte Carlo:
-    periods 0.2-2 s, gaps 0-5 cm, restitution 0.4-0.9, G0 x 0.25 to x 40,
-    stationary and modulated, SDOF, unequal heights, MDOF, elastic buildings."""
+    periods 0.2-2 s, gaps 0-12 cm (up to 3 sigma_X), restitution 0.4-0.9,
+    G0 x 0.25 to x 40, stationary and modulated, SDOF, unequal heights, MDOF,
+    elastic buildings."""
     s5 = {t: load_case(f"section5-T2-{t}") for t in ("0.4", "0.6", "0.8")}
     s5n = load_case("section5-T2-0.4-nonstationary")
     cases = [
@@ -186,6 +187,9 @@ def accuracy_cases() -> list[Case]:
         _vary(s5["0.4"], elastic=True, gap=0.06, name="elastic 1.2/0.4 gap6cm"),
         _vary(s5["0.4"], elastic=True, gap=0.03, periods=(0.5, 0.3), name="elastic 0.5/0.3 gap3cm"),
         _vary(s5n, elastic=True, gap=0.06, name="elastic 1.2/0.4 gap6cm modulated"),
+        _vary(s5["0.4"], elastic=True, gap=0.12, name="elastic 1.2/0.4 gap12cm"),
+        _vary(s5["0.4"], g0=0.25, gap=0.05, name="s5-T2-0.4 G0x0.25 gap5cm"),
+        _vary(s5["0.8"], g0=0.25, gap=0.034, name="s5-T2-0.8 G0x0.25 gap3.4cm"),
     ]
     return cases
 
