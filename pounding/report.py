@@ -1,0 +1,543 @@
+"""What the dashboard shows for one case, and the static HTML report of it.
+
+:func:`compute_snapshot` runs the library once for a case (one
+linearization, passed to every estimator): both closed-form estimates, force
+against gap, the power spectra, one seeded record's hysteresis loops beside
+the equivalent linear storeys. The plot builders and :func:`result_html` turn a
+:class:`Snapshot` into HoloViews plots and an HTML result card; the dashboard
+shows them live and :func:`write_report` writes them to one self-contained
+HTML file (all JS/CSS inline, interactive Bokeh plots, opens offline): the
+dashboard's *Export* button and ``pounding report`` both call it.
+
+Nothing here computes physics: every number comes from the library. Units:
+SI inside; :class:`Display` scales for the page (forces in kN/MN or kgf).
+"""
+
+from __future__ import annotations
+
+import html
+import math
+import os
+import re
+import tempfile
+from dataclasses import dataclass, field
+from datetime import datetime, timezone
+from pathlib import Path
+
+import numpy as np
+
+from .case import Case
+from .errors import SimulationError
+from .estimator import DEFAULT_TARGET_PROBABILITY, Estimate, GapCurve, estimate, force_versus_gap
+from .linearization import equivalent_storey_force, linearize_pair
+from .response import psd_relative_velocity
+from .simulation import SimulationResult, TimeHistory, simulate_record
+from .units import KGF_CM_S, SI, UNIT_SYSTEMS, UnitSystem
+
+__all__ = [
+    "DISPLAY_UNITS",
+    "Display",
+    "MonteCarloPoint",
+    "Snapshot",
+    "compute_snapshot",
+    "display",
+    "gap_plot",
+    "hysteresis_plot",
+    "psd_plot",
+    "report_html",
+    "result_html",
+    "write_report",
+]
+
+DEFAULT_SEED = 1
+"""Seed of the study whose record the hysteresis loops show."""
+DEFAULT_RECORD = 0
+"""Index of that record."""
+GAP_POINTS = 41
+"""Gaps of the force-versus-gap curve."""
+PSD_POINTS = 400
+"""Frequencies of the spectra."""
+CANVAS = {"plot.output_backend": "canvas"}  # WebGL is software-rendered and slow on servers without a GPU
+
+
+# --- display units -------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Display:
+    """How numbers are shown: a unit system for inputs, and the units an
+    engineer reads results in.
+
+    Attributes
+    ----------
+    system : UnitSystem
+        Units of the case's inputs.
+    force_unit, force_scale : str, float
+        Force unit and its size [N] (``kN`` = 1e3; switched to MN above 1 MN).
+    length_unit, length_scale : str, float
+        Unit of displacements, gaps, penetrations and its size [m].
+    velocity_unit, velocity_scale : str, float
+        [m/s] per unit.
+    """
+
+    system: UnitSystem
+    force_unit: str
+    force_scale: float
+    length_unit: str
+    length_scale: float
+    velocity_unit: str
+    velocity_scale: float
+
+    def force(self, value: float | None) -> str:
+        """A force [N] as text with its unit, 4 significant digits."""
+        if value is None or not math.isfinite(value):
+            return "n/a"
+        if self.force_unit == "kN" and abs(value) >= 1e6:
+            return f"{value / 1e6:.4g} MN"
+        return f"{value / self.force_scale:.4g} {self.force_unit}"
+
+    def length(self, value: float | None) -> str:
+        if value is None or not math.isfinite(value):
+            return "n/a"
+        return f"{value / self.length_scale:.4g} {self.length_unit}"
+
+    def velocity(self, value: float | None) -> str:
+        if value is None or not math.isfinite(value):
+            return "n/a"
+        return f"{value / self.velocity_scale:.4g} {self.velocity_unit}"
+
+
+DISPLAY_UNITS = {
+    SI.name: Display(SI, "kN", 1e3, "mm", 1e-3, "m/s", 1.0),
+    KGF_CM_S.name: Display(KGF_CM_S, "kgf", KGF_CM_S.force, "cm", KGF_CM_S.length, "cm/s", KGF_CM_S.length),
+}
+
+
+def display(units: str) -> Display:
+    """The :class:`Display` of a unit system's name ("SI" or "kgf-cm-s")."""
+    if units not in UNIT_SYSTEMS:
+        from .errors import CaseError
+
+        raise CaseError("units", f"unknown unit system {units!r}; allowed: {', '.join(UNIT_SYSTEMS)}")
+    return DISPLAY_UNITS[units]
+
+
+# --- the computed state --------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class MonteCarloPoint:
+    """Summary of one Monte Carlo study: mean extreme force [N] with its 95 %
+    confidence interval [N], pounding fraction [-], at ``gap`` [m]."""
+
+    gap: float
+    records: int
+    seed: int
+    force_max_mean: float
+    force_low: float
+    force_high: float
+    pounding_fraction: float
+
+    @classmethod
+    def from_result(cls, result: SimulationResult) -> MonteCarloPoint:
+        low, high = result.force_max_confidence_interval
+        return cls(
+            result.case.contact.gap, result.n_records, result.seed, result.force_max_mean, low, high, result.pounding_fraction
+        )
+
+
+@dataclass(frozen=True, eq=False)
+class Snapshot:
+    """Everything shown for one case; all SI.
+
+    Attributes
+    ----------
+    case : Case
+    linearized : tuple of two LinearizedBuilding
+    estimate : Estimate
+    gap_curve : GapCurve
+    omega : ndarray
+        Circular frequencies of the spectra [rad/s].
+    psd_ground : ndarray
+        Two-sided PSD of ground acceleration [m^2/s^3] (Eq. 7).
+    psd_velocity : ndarray
+        Two-sided PSD of the relative velocity at the contact floors [m^2/s].
+    history : TimeHistory or None
+        Record ``record`` of the study seeded ``seed``; None if it failed.
+    history_error : str
+        Why ``history`` is None.
+    equivalent_force : tuple of two ndarray
+        Restoring force of the equivalent linear storeys along the record's drifts [N].
+    seed, record : int
+    monte_carlo : tuple of MonteCarloPoint
+        Studies of this case (at any gap) to show beside the estimates.
+    """
+
+    case: Case
+    linearized: tuple
+    estimate: Estimate
+    gap_curve: GapCurve
+    omega: np.ndarray
+    psd_ground: np.ndarray
+    psd_velocity: np.ndarray
+    history: TimeHistory | None
+    history_error: str
+    equivalent_force: tuple
+    seed: int = DEFAULT_SEED
+    record: int = DEFAULT_RECORD
+    monte_carlo: tuple = field(default=())
+
+
+def gap_grid(case: Case, result: Estimate, points: int = GAP_POINTS) -> np.ndarray:
+    """Gaps [m] from 0 past the required gap and twice the case's gap, with the case's gap among them."""
+    top = max(1.25 * result.required_gap, 2.0 * case.contact.gap, 1e-3)
+    return np.unique(np.append(np.linspace(0.0, top, points), case.contact.gap))
+
+
+def compute_snapshot(
+    case: Case,
+    seed: int = DEFAULT_SEED,
+    record: int = DEFAULT_RECORD,
+    target_probability: float = DEFAULT_TARGET_PROBABILITY,
+    monte_carlo: tuple = (),
+) -> Snapshot:
+    """Run the library once for ``case``: the linearization is computed once and shared.
+
+    Raises whatever the library raises for an impossible case (``CaseError``,
+    ``ConvergenceError``); a failed record is kept in ``history_error``.
+    """
+    linearized = linearize_pair(case)
+    result = estimate(case, target_probability, linearized=linearized)
+    curve = force_versus_gap(case, gap_grid(case, result), linearized=linearized)
+    omega = np.geomspace(0.3, case.excitation.cutoff_frequency, PSD_POINTS)
+    psd_ground = np.asarray(case.excitation.spectrum.psd(omega), dtype=float)
+    psd_velocity = psd_relative_velocity(case, linearized, omega)
+    history, history_error, equivalent = None, "", ()
+    try:
+        history = simulate_record(case, seed, record)
+    except SimulationError as error:
+        history_error = str(error)
+    if history is not None:
+        equivalent = tuple(
+            equivalent_storey_force(lin, history.time, history.drift[:, [history.floor(b, j + 1) for j in range(lin.building.n_storeys)]])
+            for b, lin in enumerate(linearized, start=1)
+        )
+    return Snapshot(
+        case, linearized, result, curve, omega, psd_ground, psd_velocity, history, history_error, equivalent, seed, record,
+        tuple(monte_carlo),
+    )
+
+
+# --- the result card -----------------------------------------------------------
+
+
+def _row(label: str, recommended: str, paper: str, css: str = "") -> str:
+    return f'<tr class="{css}"><th>{label}</th><td>{recommended}</td><td>{paper}</td></tr>'
+
+
+def result_html(snapshot: Snapshot, units: str = "SI", monte_carlo: MonteCarloPoint | None = None, monte_carlo_note: str = "") -> str:
+    """The result card: recommended and paper's F_e side by side, each with its chain.
+
+    ``monte_carlo`` is a study of exactly this case (shown beside F_e);
+    ``monte_carlo_note`` says why none is shown.
+    """
+    d = display(units)
+    e, p, case = snapshot.estimate, snapshot.estimate.paper, snapshot.case
+    rate = "1/s"
+    stationary = case.excitation.stationary
+    sigma_paper = d.velocity(e.sigma_relative_velocity) if stationary else d.velocity(p.sigma_relative_velocity_equivalent) + " (sigma_eq, Eq. 29)"
+    rows = [
+        _row(
+            "expected extreme pounding force F<sub>e</sub>",
+            f'<span class="fe-recommended">{d.force(e.force_expected)}</span>',
+            f'<span class="fe-paper">{d.force(p.force_expected)}</span>',
+            "headline",
+        ),
+        _row("sigma of relative displacement", d.length(e.sigma_relative_displacement), d.length(e.sigma_relative_displacement)),
+        _row("sigma of relative velocity", d.velocity(e.sigma_relative_velocity), sigma_paper),
+        _row("crossing rate", f"{e.upcrossing_rate:.4g} {rate} (nu<sub>0</sub><sup>+</sup>)", f"{p.crossing_rate:.4g} {rate} (nu, Eq. 24)"),
+        _row("effective duration", f"{case.excitation.duration:.4g} s", f"{p.duration_effective:.4g} s"),
+        _row("peak factor", "(over the gap: no single factor)", f"{p.peak_factor:.4g} (Davenport, Eq. 23)"),
+        _row("expected impact velocity", d.velocity(e.relative_velocity_expected), d.velocity(p.relative_velocity_expected)),
+        _row("peak penetration", "n/a", d.length(p.penetration_expected)),
+        _row("peak force ratio K(e)", f"{e.peak_force_ratio:.4g}", "1 (undamped Hertz)"),
+        _row("expected number of impacts", f"{e.impacts_expected:.4g}", "(ignores the gap)"),
+    ]
+    if monte_carlo is not None:
+        mc = (
+            f'<span class="mc-mean">{d.force(monte_carlo.force_max_mean)}</span> '
+            f"(95 % CI {d.force(monte_carlo.force_low)} to {d.force(monte_carlo.force_high)}; "
+            f"{monte_carlo.records} records, seed {monte_carlo.seed}; pounding in {100 * monte_carlo.pounding_fraction:.0f} %)"
+        )
+    else:
+        mc = html.escape(monte_carlo_note or "not run")
+    summary = (
+        f'<p class="probability">Probability of pounding during the {case.excitation.duration:g} s record: '
+        f'<b><span class="pounding-probability">{100 * e.pounding_probability:.3g} %</span></b> '
+        f"at the gap of {d.length(case.contact.gap)}. "
+        f'Gap for {100 * e.target_probability:.0f} % probability of no pounding: '
+        f'<b><span class="required-gap">{d.length(e.required_gap)}</span></b> '
+        f"(SRSS {d.length(e.separation_rules['srss'])}, ABS {d.length(e.separation_rules['abs'])}, "
+        f"DDC {d.length(e.separation_rules['ddc'])}).</p>"
+        f'<p class="monte-carlo">Monte Carlo mean F<sub>max</sub>: {mc}</p>'
+    )
+    return (
+        '<div class="pounding-result">'
+        "<table><thead><tr><th></th><th>recommended (gap-aware)</th><th>paper (Eq. 12-30)</th></tr></thead><tbody>"
+        + "".join(rows)
+        + "</tbody></table>"
+        + summary
+        + "</div>"
+    )
+
+
+RESULT_CSS = """
+.pounding-result table { border-collapse: collapse; font-size: 14px; }
+.pounding-result th, .pounding-result td { padding: 3px 10px; border-bottom: 1px solid #ddd; text-align: left; }
+.pounding-result tr.headline td { font-size: 20px; font-weight: bold; color: #0b4f8a; }
+.pounding-result p { font-size: 14px; margin: 6px 0; }
+"""
+
+
+# --- plots ---------------------------------------------------------------------
+
+
+def _hv():
+    import holoviews as hv
+    import holoviews.plotting.bokeh  # noqa: F401  (registers the Bokeh backend)
+
+    hv.Store.set_current_backend("bokeh")
+    return hv
+
+
+def psd_plot(snapshot: Snapshot | None, units: str = "SI"):
+    """Ground-acceleration PSD (Eq. 7) and the relative-velocity PSD of the
+    linearized pair at the contact floors, side by side on log-log axes."""
+    hv = _hv()
+    d = display(units)
+    if snapshot is None:
+        omega = np.array([1.0, 2.0])
+        ground = velocity = np.full(2, np.nan)
+    else:
+        omega = snapshot.omega
+        ground = snapshot.psd_ground / d.length_scale**2
+        velocity = snapshot.psd_velocity / d.velocity_scale**2
+    x = hv.Dimension("omega", label="circular frequency", unit="rad/s")
+    style = dict(logx=True, logy=True, responsive=True, height=300, backend_opts=CANVAS, show_grid=True)
+    ground_curve = hv.Curve(
+        (omega, ground), x, hv.Dimension("S_g", label="S_g", unit=f"{d.length_unit}^2/s^3"),
+    ).opts(color="#7f7f7f", title="Ground acceleration PSD (two-sided, Eq. 7)", **style)
+    finite = velocity[np.isfinite(velocity) & (velocity > 0)]
+    floor = finite.max() * 1e-8 if finite.size else None  # the response PSD falls to 0 at high frequency
+    velocity_curve = hv.Curve(
+        (omega, velocity), x, hv.Dimension("S_V", label="S_V", unit=f"({d.velocity_unit})^2 s"),
+    ).opts(color="#1f77b4", title="Relative velocity PSD at the contact floors (linearized pair)", **style)
+    if floor is not None:
+        velocity_curve = velocity_curve.redim.range(S_V=(floor, None))
+    return hv.Layout([ground_curve, velocity_curve]).cols(2).opts(shared_axes=False)
+
+
+def gap_plot(snapshot: Snapshot | None, units: str = "SI", monte_carlo: tuple = ()):
+    """F_e against the gap: paper (flat), recommended, pounding probability on a
+    second axis, a marker at the current gap, Monte Carlo means with 95 % CIs."""
+    hv = _hv()
+    d = display(units)
+    force_scale = d.force_scale
+    force_unit = d.force_unit
+    if snapshot is None:
+        gaps = np.array([0.0, 1.0])
+        force = probability = paper = np.full(2, np.nan)
+        gap = np.nan
+        at_gap = np.nan
+        top = 1.0
+    else:
+        curve = snapshot.gap_curve
+        gaps = curve.gaps / d.length_scale
+        force = curve.force_expected / force_scale
+        probability = curve.pounding_probability
+        paper = np.full(gaps.size, np.nan if curve.paper_force_expected is None else curve.paper_force_expected / force_scale)
+        gap = snapshot.case.contact.gap / d.length_scale
+        at_gap = snapshot.estimate.force_expected / force_scale
+        finite = [v for v in (*force, *paper) if math.isfinite(v)]
+        top = 1.05 * max(finite) if finite else 1.0
+    x = hv.Dimension("gap", unit=d.length_unit)
+    y = hv.Dimension("force", label="expected extreme force", unit=force_unit)
+    p = hv.Dimension("probability", label="probability of pounding", unit="-", range=(0, 1.02))
+    points = [m for m in monte_carlo if math.isfinite(m.force_low)]
+    mc_x = np.array([m.gap / d.length_scale for m in points])
+    mc_y = np.array([m.force_max_mean / force_scale for m in points])
+    mc_err_low = np.array([(m.force_max_mean - m.force_low) / force_scale for m in points])
+    mc_err_high = np.array([(m.force_high - m.force_max_mean) / force_scale for m in points])
+    mc_p = np.array([m.pounding_fraction for m in points])
+    return (
+        hv.Curve((gaps, force), x, y, label="recommended E[F_max]").opts(color="#1f77b4", line_width=2)
+        * hv.Curve((gaps, paper), x, y, label="paper F_e (gap-independent)").opts(color="#d62728", line_dash="dashed")
+        * hv.ErrorBars((mc_x, mc_y, mc_err_low, mc_err_high), x, [y, "low", "high"], label="Monte Carlo 95 % CI").opts(color="black")
+        * hv.Scatter((mc_x, mc_y), x, y, label="Monte Carlo mean F_max").opts(color="black", size=8, marker="square")
+        * hv.Scatter(([gap], [at_gap]), x, y, label="current gap").opts(color="#1f77b4", size=11)
+        * hv.Curve(([gap, gap], [0.0, top]), x, y, label="gap of the case").opts(color="#555555", line_dash="dotted")
+        * hv.Curve((gaps, probability), x, p, label="probability of pounding").opts(color="#2ca02c")
+        * hv.Scatter((mc_x, mc_p), x, p, label="Monte Carlo pounding fraction").opts(color="#2ca02c", size=7, marker="triangle")
+    ).opts(
+        hv.opts.Overlay(multi_y=True, title="Expected extreme pounding force against the gap", legend_position="top_right",
+                        responsive=True, height=340, backend_opts=CANVAS)
+    )
+
+
+def hysteresis_plot(snapshot: Snapshot | None, units: str = "SI"):
+    """Storey restoring force against drift (first storey of each building) for
+    one seeded record, the equivalent linear storey along the same drifts, the
+    instants of impact, and the pounding force history."""
+    hv = _hv()
+    d = display(units)
+    x = hv.Dimension("drift", label="storey drift", unit=d.length_unit)
+    y = hv.Dimension("storey_force", label="restoring force", unit=d.force_unit)
+    panels = []
+    history = snapshot.history if snapshot is not None else None
+    for b in (1, 2):
+        if history is None:
+            drift = force = equivalent = np.full(2, np.nan)
+            impact = np.zeros(2, dtype=bool)
+        else:
+            column = history.floor(b, 1)
+            drift = history.drift[:, column] / d.length_scale
+            force = history.storey_force[:, column] / d.force_scale
+            equivalent = snapshot.equivalent_force[b - 1][:, 0] / d.force_scale
+            impact = history.contact_force > 0
+        title = f"Building {b}, storey 1: restoring force against drift"
+        panels.append(
+            (
+                hv.Curve((drift, equivalent), x, y, label="equivalent linear (Eq. 19)").opts(color="#ff7f0e", line_dash="dashed", alpha=0.8)
+                * hv.Curve((drift, force), x, y, label="Bouc-Wen (record)").opts(color="#1f77b4", line_width=1)
+                * hv.Scatter((drift[impact], force[impact]), x, y, label="during impact").opts(color="#d62728", size=4)
+            ).opts(hv.opts.Overlay(title=title, legend_position="top_left", responsive=True, height=300, backend_opts=CANVAS))
+        )
+    if history is None:
+        time = contact = np.full(2, np.nan)
+    else:
+        time, contact = history.time, history.contact_force / d.force_scale
+    spikes = hv.Curve(
+        (time, contact), hv.Dimension("time", unit="s"), hv.Dimension("contact_force", label="pounding force", unit=d.force_unit),
+        label="pounding force",
+    ).opts(color="#d62728", responsive=True, height=220, title="Pounding force during the record", backend_opts=CANVAS)
+    return hv.Layout([*panels, spikes]).cols(2).opts(shared_axes=False)
+
+
+# --- the static report ---------------------------------------------------------
+
+REPORT_NOTE = (
+    "A snapshot of one state: the plots are interactive (zoom, pan, hover) but nothing is recomputed; "
+    "change parameters in the dashboard (pounding dashboard) and export again."
+)
+
+
+def _case_table(case: Case, units: str) -> str:
+    d = display(units)
+    u = d.system
+    rows = []
+    for number, building in enumerate(case.buildings, start=1):
+        storey = building.storeys[0]
+        bw = storey.bouc_wen
+        n = bw.n
+        rows.append(
+            f"<tr><th>building {number}</th><td>{building.n_storeys} storey(s), T<sub>1</sub> = {building.periods[0]:.4g} s, "
+            f"storey 1: m = {u.from_si(storey.mass, mass=1):.4g} {u.mass_label}, "
+            f"k = {u.from_si(storey.stiffness, force=1, length=-1):.4g} {u.force_label}/{u.length_label}, "
+            f"damping ratio {building.damping_ratio:g}; Bouc-Wen alpha = {bw.alpha:g}, A = {bw.A:g}, "
+            f"beta = {u.from_si(bw.beta, length=-n):.4g} 1/{u.length_label}^{n:g}, "
+            f"gamma = {u.from_si(bw.gamma, length=-n):.4g} 1/{u.length_label}^{n:g}, n = {n:g}</td></tr>"
+        )
+    c = case.contact
+    exponent = c.stiffness_exponent
+    rows.append(
+        f"<tr><th>contact</th><td>{c.model}, gap {d.length(c.gap)}, "
+        f"stiffness {u.from_si(c.stiffness, force=1, length=-exponent):.4g} {u.force_label}/{u.length_label}^{exponent:g}, "
+        f"restitution {c.restitution:g}, levels {c.levels[0]} and {c.levels[1]}</td></tr>"
+    )
+    s = case.excitation.spectrum
+    envelope = "stationary" if case.excitation.stationary else f"Shinozuka-Sato envelope (B1 = {case.excitation.envelope.B1:g}, B2 = {case.excitation.envelope.B2:g})"
+    rows.append(
+        f"<tr><th>excitation</th><td>{type(s).__name__}: G0 = {u.from_si(s.G0, length=2):.4g} {u.length_label}^2/s^3, "
+        f"omega_g = {s.omega_g:g} rad/s, xi_g = {s.xi_g:g}; duration {case.excitation.duration:g} s, {envelope}</td></tr>"
+    )
+    return '<table class="case-table">' + "".join(rows) + "</table>"
+
+
+def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None) -> str:
+    """The report as one HTML document: every script and style inline."""
+    from bokeh.embed import file_html
+    from bokeh.layouts import column
+    from bokeh.models import Div
+    from bokeh.resources import INLINE
+
+    hv = _hv()
+    case = snapshot.case
+    title = title or f"pounding report: {case.name}"
+    matching = [m for m in snapshot.monte_carlo if m.gap == case.contact.gap]
+    stamp = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    history_note = (
+        f"Hysteresis: record {snapshot.record} of the study seeded {snapshot.seed}."
+        if snapshot.history is not None
+        else f"The representative record failed: {html.escape(snapshot.history_error)}"
+    )
+    header = Div(
+        text=(
+            f"<style>{RESULT_CSS} .case-table th, .case-table td {{ text-align: left; padding: 2px 8px; font-size: 13px; }}</style>"
+            f"<h1>{html.escape(title)}</h1>"
+            f"<p>{html.escape(case.description)}</p>"
+            f'<p class="report-note"><i>{REPORT_NOTE}</i> Written {stamp} by pounding.</p>'
+            + _case_table(case, units)
+            + "<h2>Result</h2>"
+            + result_html(snapshot, units, matching[-1] if matching else None, "not run for this report")
+            + f"<p>{history_note}</p>"
+        ),
+        sizing_mode="stretch_width",
+    )
+    figures = [
+        hv.render(gap_plot(snapshot, units, snapshot.monte_carlo), backend="bokeh"),
+        hv.render(psd_plot(snapshot, units), backend="bokeh"),
+        hv.render(hysteresis_plot(snapshot, units), backend="bokeh"),
+    ]
+    layout = column(header, *figures, sizing_mode="stretch_width")
+    return _without_server_scripts(file_html(layout, resources=INLINE, title=title))
+
+
+_SERVER_SCRIPT = re.compile(r'<script[^>]*\bsrc="(?!data:)[^"]*"[^>]*>\s*</script>\s*')
+
+
+def _without_server_scripts(text: str) -> str:
+    """Drop ``<script src=...>`` tags: with Panel imported, Bokeh's inline bundle
+    still names a server-relative shim (for Panel's ES modules, unused here)
+    that a file cannot load; everything the report runs is inline."""
+    return _SERVER_SCRIPT.sub("", text)
+
+
+def write_report(path: str | os.PathLike, snapshot: Snapshot | Case, units: str = "SI", title: str | None = None) -> Path:
+    """Write the static report of ``snapshot`` (or of a case, computed here) to ``path``.
+
+    The file is written atomically: to a temporary file beside ``path``, then
+    renamed over it, so a failed or interrupted write leaves no partial file.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
+    path = Path(path)
+    if isinstance(snapshot, Case):
+        snapshot = compute_snapshot(snapshot)
+    text = report_html(snapshot, units, title)
+    descriptor, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(descriptor, "w", encoding="utf-8") as stream:
+            stream.write(text)
+            stream.flush()
+            os.fsync(stream.fileno())
+        os.replace(temporary, path)
+    except BaseException:
+        try:
+            os.unlink(temporary)
+        except FileNotFoundError:
+            pass
+        raise
+    return path
