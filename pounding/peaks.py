@@ -278,13 +278,12 @@ def _switched_on(model: StateSpace, times):
     deviation[f, f] = 0.0  # the filter starts in its stationary state
     out = np.empty((times.size,) + A.shape)
     out[0] = stationary + deviation
-    propagators = {}
-    for k, h in enumerate(np.diff(times)):
-        key = round(h, 12)
-        if key not in propagators:
-            propagators[key] = expm(A * h)
-        propagator = propagators[key]
-        deviation = propagator @ deviation @ propagator.T
+    steps = np.diff(times)
+    uniform = steps.size > 0 and np.allclose(steps, steps[0], rtol=1e-12, atol=0.0)
+    propagator = expm(A * steps[0]) if uniform else None
+    for k, h in enumerate(steps):
+        step_propagator = propagator if uniform else expm(A * h)
+        deviation = step_propagator @ deviation @ step_propagator.T
         out[k + 1] = stationary + deviation
     return out
 
