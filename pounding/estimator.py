@@ -416,14 +416,23 @@ TAIL_WARNING = (
     "Gaussian tail of the linearized response, where it was measured {range} off Monte Carlo "
     "(docs/estimator.md); check it with `pounding simulate`"
 )
+REQUIRED_GAP_WARNING = (
+    "the gap for the target probability lies where pounding is rare (beyond sigma_X), where the estimated "
+    "probability of pounding was measured {range} Monte Carlo's (docs/estimator.md); check the chosen gap "
+    "with `pounding simulate`"
+)
 
 
-def _warnings(case: Case, linearized, response: ContactResponse) -> tuple[str, ...]:
+def _warnings(case: Case, linearized, response: ContactResponse, required_gap: float) -> tuple[str, ...]:
     """The measured limits of the recommended estimator that apply to ``case``."""
-    if case.contact.gap <= response.sigma_relative_displacement:
-        return ()
+    sigma = response.sigma_relative_displacement
     yielding = any(np.any(building.k_e != 0.0) for building in linearized)
-    return (TAIL_WARNING.format(range="from -55 % to +150 %" if yielding else "up to +30 %"),)
+    warnings = []
+    if case.contact.gap > sigma:
+        warnings.append(TAIL_WARNING.format(range="from -55 % to +150 %" if yielding else "up to +40 %"))
+    if required_gap > sigma:
+        warnings.append(REQUIRED_GAP_WARNING.format(range="between 0.8 and 1.8 times" if yielding else "within 0.05 of"))
+    return tuple(warnings)
 
 
 def _check_probability(target_probability: float) -> None:
@@ -455,6 +464,7 @@ def estimate(
     gap = np.array([contact.gap])
     unit_peak = impact_peak_force(contact, 1.0, case.reduced_mass)
     impacts = float(crossings.intensity(gap, np.zeros(1))[0, 0])
+    required_gap = _required_gap(crossings, target_probability)
     velocity_power, velocity = _expected_powers_of_maximum(crossings, gap, (_exponent(contact), 1.0))[:, 0]
     return Estimate(
         case=case,
@@ -464,14 +474,14 @@ def estimate(
         sigma_relative_velocity=response.sigma_relative_velocity,
         impacts_expected=impacts,
         pounding_probability=float(-math.expm1(-impacts)),
-        required_gap=_required_gap(crossings, target_probability),
+        required_gap=required_gap,
         target_probability=float(target_probability),
         upcrossing_rate=response.upcrossing_rate,
         peak_force_ratio=peak_force_ratio(contact.model, contact.restitution),
         separation_rules=_separation_rules(case, response),
         paper=paper_estimate(case, linearized, response, paper_variance),
         response=response,
-        warnings=_warnings(case, linearized, response),
+        warnings=_warnings(case, linearized, response, required_gap),
     )
 
 

@@ -40,7 +40,7 @@ def test_recommended_estimate_within_ten_percent(case):
     mean, error = _monte_carlo(case)
     result = estimate(case)
     assert result.sigma_relative_displacement > case.contact.gap
-    assert result.warnings == ()
+    assert not any("gap exceeds sigma_X" in warning for warning in result.warnings)
     assert abs(result.force_expected - mean) < 0.10 * mean + 3 * error
 
 
@@ -79,7 +79,7 @@ def test_rare_pounding_of_yielding_buildings_is_flagged():
     case = _vary(load_case("section5-T2-0.4"), g0=0.25, gap=0.05)
     result = estimate(case)
     assert result.sigma_relative_displacement < case.contact.gap
-    assert len(result.warnings) == 1 and "pounding simulate" in result.warnings[0]
+    assert any("gap exceeds sigma_X" in warning and "pounding simulate" in warning for warning in result.warnings)
 
 
 def test_impacts_expected_tracks_the_simulated_count_when_pounding_is_frequent():
