@@ -210,12 +210,10 @@ class SimulationResult:
         }
 
 
-def _raise_failure(summary: np.ndarray, index: int, seed: int, settings: Settings) -> None:
-    status = int(summary[kernel.S_STATUS])
-    reason = _FAILURES[status].format(limit=settings.displacement_limit)
-    raise SimulationError(
-        f"record {index} (seed {seed}) failed at t = {summary[kernel.S_TIME]:.4f} s: {reason}"
-    )
+def _failure(summary: np.ndarray, label: str, settings: Settings) -> SimulationError:
+    """The error for a record whose kernel status is not OK."""
+    reason = _FAILURES[int(summary[kernel.S_STATUS])].format(limit=settings.displacement_limit)
+    return SimulationError(f"{label} failed at t = {summary[kernel.S_TIME]:.4f} s: {reason}")
 
 
 def _check_records(records: int, seed: int, first_record: int) -> None:
@@ -297,7 +295,7 @@ def simulate(
                 failed = np.flatnonzero(summaries[chunk, kernel.S_STATUS] != kernel.OK)
                 if failed.size:
                     row = chunk.start + failed[0]
-                    _raise_failure(summaries[row], int(indices[row]), seed, settings)
+                    raise _failure(summaries[row], f"record {indices[row]} (seed {seed})", settings)
                 done += chunk.stop - chunk.start
                 if progress is not None:
                     progress(done, records)
@@ -405,9 +403,7 @@ def integrate(
             break
         capacity *= 4
     if summary[kernel.S_STATUS] != kernel.OK:
-        status = int(summary[kernel.S_STATUS])
-        reason = _FAILURES[status].format(limit=settings.displacement_limit)
-        raise SimulationError(f"{label} failed at t = {summary[kernel.S_TIME]:.4f} s: {reason}")
+        raise _failure(summary, label, settings)
     time, state, force = time[:stored], state[:stored], force[:stored]
     n = system.n_floors
     displacement, velocity, hysteretic = state[:, :n], state[:, n : 2 * n], state[:, 2 * n :]
