@@ -41,9 +41,7 @@ __all__ = [
     "Snapshot",
     "compute_snapshot",
     "display",
-    "gap_plot",
-    "hysteresis_plot",
-    "psd_plot",
+    "Figures",
     "report_html",
     "result_html",
     "write_report",
@@ -57,7 +55,6 @@ GAP_POINTS = 41
 """Gaps of the force-versus-gap curve."""
 PSD_POINTS = 400
 """Frequencies of the spectra."""
-CANVAS = {"plot.output_backend": "canvas"}  # WebGL is software-rendered and slow on servers without a GPU
 
 
 # --- display units -------------------------------------------------------------
@@ -301,126 +298,136 @@ RESULT_CSS = """
 
 # --- plots ---------------------------------------------------------------------
 
-
-def _hv():
-    import holoviews as hv
-    import holoviews.plotting.bokeh  # noqa: F401  (registers the Bokeh backend)
-
-    hv.Store.set_current_backend("bokeh")
-    return hv
+_NAN2 = np.full(2, np.nan)
 
 
-def psd_plot(snapshot: Snapshot | None, units: str = "SI"):
-    """Ground-acceleration PSD (Eq. 7) and the relative-velocity PSD of the
-    linearized pair at the contact floors, side by side on log-log axes."""
-    hv = _hv()
-    d = display(units)
-    if snapshot is None:
-        omega = np.array([1.0, 2.0])
-        ground = velocity = np.full(2, np.nan)
-    else:
-        omega = snapshot.omega
-        ground = snapshot.psd_ground / d.length_scale**2
-        velocity = snapshot.psd_velocity / d.velocity_scale**2
-    x = hv.Dimension("omega", label="circular frequency", unit="rad/s")
-    style = dict(logx=True, logy=True, responsive=True, height=300, backend_opts=CANVAS, show_grid=True)
-    ground_curve = hv.Curve(
-        (omega, ground), x, hv.Dimension("S_g", label="S_g", unit=f"{d.length_unit}^2/s^3"),
-    ).opts(color="#7f7f7f", title="Ground acceleration PSD (two-sided, Eq. 7)", **style)
-    finite = velocity[np.isfinite(velocity) & (velocity > 0)]
-    floor = finite.max() * 1e-8 if finite.size else None  # the response PSD falls to 0 at high frequency
-    velocity_curve = hv.Curve(
-        (omega, velocity), x, hv.Dimension("S_V", label="S_V", unit=f"({d.velocity_unit})^2 s"),
-    ).opts(color="#1f77b4", title="Relative velocity PSD at the contact floors (linearized pair)", **style)
-    if floor is not None:
-        velocity_curve = velocity_curve.redim.range(S_V=(floor, None))
-    return hv.Layout([ground_curve, velocity_curve]).cols(2).opts(shared_axes=False)
+class Figures:
+    """The Bokeh figures of a snapshot (canvas backend) and their data sources.
 
+    Built once; :meth:`fill` puts a snapshot's data into the sources in place,
+    so a live page only sends new numbers. The dashboard keeps one per session;
+    the report fills one and writes it.
 
-def gap_plot(snapshot: Snapshot | None, units: str = "SI", monte_carlo: tuple = ()):
-    """F_e against the gap: paper (flat), recommended, pounding probability on a
-    second axis, a marker at the current gap, Monte Carlo means with 95 % CIs."""
-    hv = _hv()
-    d = display(units)
-    force_scale = d.force_scale
-    force_unit = d.force_unit
-    if snapshot is None:
-        gaps = np.array([0.0, 1.0])
-        force = probability = paper = np.full(2, np.nan)
-        gap = np.nan
-        at_gap = np.nan
-        top = 1.0
-    else:
-        curve = snapshot.gap_curve
-        gaps = curve.gaps / d.length_scale
-        force = curve.force_expected / force_scale
-        probability = curve.pounding_probability
-        paper = np.full(gaps.size, np.nan if curve.paper_force_expected is None else curve.paper_force_expected / force_scale)
-        gap = snapshot.case.contact.gap / d.length_scale
-        at_gap = snapshot.estimate.force_expected / force_scale
-        finite = [v for v in (*force, *paper) if math.isfinite(v)]
-        top = 1.05 * max(finite) if finite else 1.0
-    x = hv.Dimension("gap", unit=d.length_unit)
-    y = hv.Dimension("force", label="expected extreme force", unit=force_unit)
-    p = hv.Dimension("probability", label="probability of pounding", unit="-", range=(0, 1.02))
-    points = [m for m in monte_carlo if math.isfinite(m.force_low)]
-    mc_x = np.array([m.gap / d.length_scale for m in points])
-    mc_y = np.array([m.force_max_mean / force_scale for m in points])
-    mc_err_low = np.array([(m.force_max_mean - m.force_low) / force_scale for m in points])
-    mc_err_high = np.array([(m.force_high - m.force_max_mean) / force_scale for m in points])
-    mc_p = np.array([m.pounding_fraction for m in points])
-    return (
-        hv.Curve((gaps, force), x, y, label="recommended E[F_max]").opts(color="#1f77b4", line_width=2)
-        * hv.Curve((gaps, paper), x, y, label="paper F_e (gap-independent)").opts(color="#d62728", line_dash="dashed")
-        * hv.ErrorBars((mc_x, mc_y, mc_err_low, mc_err_high), x, [y, "low", "high"], label="Monte Carlo 95 % CI").opts(color="black")
-        * hv.Scatter((mc_x, mc_y), x, y, label="Monte Carlo mean F_max").opts(color="black", size=8, marker="square")
-        * hv.Scatter(([gap], [at_gap]), x, y, label="current gap").opts(color="#1f77b4", size=11)
-        * hv.Curve(([gap, gap], [0.0, top]), x, y, label="gap of the case").opts(color="#555555", line_dash="dotted")
-        * hv.Curve((gaps, probability), x, p, label="probability of pounding").opts(color="#2ca02c")
-        * hv.Scatter((mc_x, mc_p), x, p, label="Monte Carlo pounding fraction").opts(color="#2ca02c", size=7, marker="triangle")
-    ).opts(
-        hv.opts.Overlay(multi_y=True, title="Expected extreme pounding force against the gap", legend_position="top_right",
-                        responsive=True, height=340, backend_opts=CANVAS)
-    )
+    Attributes
+    ----------
+    gap, psd_ground, psd_velocity, hysteresis (two), contact : bokeh figure
+    """
 
+    def __init__(self):
+        from bokeh.models import ColumnDataSource, HoverTool, LinearAxis, Range1d, Whisker
+        from bokeh.plotting import figure
 
-def hysteresis_plot(snapshot: Snapshot | None, units: str = "SI"):
-    """Storey restoring force against drift (first storey of each building) for
-    one seeded record, the equivalent linear storey along the same drifts, the
-    instants of impact, and the pounding force history."""
-    hv = _hv()
-    d = display(units)
-    x = hv.Dimension("drift", label="storey drift", unit=d.length_unit)
-    y = hv.Dimension("storey_force", label="restoring force", unit=d.force_unit)
-    panels = []
-    history = snapshot.history if snapshot is not None else None
-    for b in (1, 2):
-        if history is None:
-            drift = force = equivalent = np.full(2, np.nan)
-            impact = np.zeros(2, dtype=bool)
-        else:
-            column = history.floor(b, 1)
-            drift = history.drift[:, column] / d.length_scale
-            force = history.storey_force[:, column] / d.force_scale
-            equivalent = snapshot.equivalent_force[b - 1][:, 0] / d.force_scale
-            impact = history.contact_force > 0
-        title = f"Building {b}, storey 1: restoring force against drift"
-        panels.append(
-            (
-                hv.Curve((drift, equivalent), x, y, label="equivalent linear (Eq. 19)").opts(color="#ff7f0e", line_dash="dashed", alpha=0.8)
-                * hv.Curve((drift, force), x, y, label="Bouc-Wen (record)").opts(color="#1f77b4", line_width=1)
-                * hv.Scatter((drift[impact], force[impact]), x, y, label="during impact").opts(color="#d62728", size=4)
-            ).opts(hv.opts.Overlay(title=title, legend_position="top_left", responsive=True, height=300, backend_opts=CANVAS))
+        common = dict(output_backend="canvas", sizing_mode="stretch_width", tools="pan,wheel_zoom,box_zoom,reset,save")
+        cds = lambda **columns: ColumnDataSource(data=columns)  # noqa: E731
+        self.sources = {
+            "gap": cds(gap=[], force=[], paper=[], probability=[]),
+            "current": cds(gap=[], force=[]),
+            "marker": cds(gap=[], force=[]),
+            "mc": cds(gap=[], force=[], low=[], high=[], fraction=[]),
+            "psd": cds(omega=[], ground=[], velocity=[]),
+            "hysteresis1": cds(drift=[], force=[], equivalent=[]),
+            "hysteresis2": cds(drift=[], force=[], equivalent=[]),
+            "impact1": cds(drift=[], force=[]),
+            "impact2": cds(drift=[], force=[]),
+            "contact": cds(time=[], force=[]),
+        }
+        src = self.sources
+
+        g = figure(title="Expected extreme pounding force against the gap", height=340, **common)
+        g.extra_y_ranges = {"probability": Range1d(0.0, 1.02)}
+        g.add_layout(LinearAxis(y_range_name="probability", axis_label="probability of pounding [-]"), "right")
+        g.line("gap", "force", source=src["gap"], color="#1f77b4", line_width=2, legend_label="recommended E[F_max]")
+        g.line("gap", "paper", source=src["gap"], color="#d62728", line_dash="dashed", line_width=2, legend_label="paper F_e (gap-independent)")
+        g.line("gap", "probability", source=src["gap"], color="#2ca02c", y_range_name="probability", legend_label="probability of pounding")
+        g.line("gap", "force", source=src["marker"], color="#555555", line_dash="dotted")
+        g.scatter("gap", "force", source=src["current"], color="#1f77b4", size=11, legend_label="current gap")
+        g.add_layout(Whisker(base="gap", lower="low", upper="high", source=src["mc"], line_color="black"))
+        g.scatter("gap", "force", source=src["mc"], color="black", marker="square", size=8, legend_label="Monte Carlo mean F_max (95 % CI)")
+        g.scatter("gap", "fraction", source=src["mc"], color="#2ca02c", marker="triangle", size=8, y_range_name="probability",
+                  legend_label="Monte Carlo pounding fraction")
+        g.legend.location = "top_right"
+        g.legend.click_policy = "hide"
+        g.add_tools(HoverTool(tooltips=[("gap", "@gap"), ("force", "@force")]))
+        self.gap = g
+
+        self.psd_ground = figure(title="Ground acceleration PSD (two-sided, Eq. 7)", height=300, x_axis_type="log", y_axis_type="log", **common)
+        self.psd_ground.line("omega", "ground", source=src["psd"], color="#7f7f7f", line_width=2)
+        self.psd_velocity = figure(
+            title="Relative velocity PSD at the contact floors (linearized pair)", height=300, x_axis_type="log", y_axis_type="log", **common
         )
-    if history is None:
-        time = contact = np.full(2, np.nan)
-    else:
-        time, contact = history.time, history.contact_force / d.force_scale
-    spikes = hv.Curve(
-        (time, contact), hv.Dimension("time", unit="s"), hv.Dimension("contact_force", label="pounding force", unit=d.force_unit),
-        label="pounding force",
-    ).opts(color="#d62728", responsive=True, height=220, title="Pounding force during the record", backend_opts=CANVAS)
-    return hv.Layout([*panels, spikes]).cols(2).opts(shared_axes=False)
+        self.psd_velocity.line("omega", "velocity", source=src["psd"], color="#1f77b4", line_width=2)
+        for f in (self.psd_ground, self.psd_velocity):
+            f.xaxis.axis_label = "circular frequency [rad/s]"
+
+        self.hysteresis = []
+        for b in (1, 2):
+            h = figure(title=f"Building {b}, storey 1: restoring force against drift (one record)", height=320, **common)
+            h.line("drift", "equivalent", source=src[f"hysteresis{b}"], color="#ff7f0e", line_dash="dashed", alpha=0.8,
+                   legend_label="equivalent linear (Eq. 19)")
+            h.line("drift", "force", source=src[f"hysteresis{b}"], color="#1f77b4", legend_label="Bouc-Wen")
+            h.scatter("drift", "force", source=src[f"impact{b}"], color="#d62728", size=4, legend_label="during impact")
+            h.legend.location = "top_left"
+            h.legend.click_policy = "hide"
+            self.hysteresis.append(h)
+        self.contact = figure(title="Pounding force during the record", height=230, **common)
+        self.contact.line("time", "force", source=src["contact"], color="#d62728")
+        self.contact.xaxis.axis_label = "time [s]"
+
+    @property
+    def all(self) -> list:
+        return [self.gap, self.psd_ground, self.psd_velocity, *self.hysteresis, self.contact]
+
+    def fill(self, snapshot: Snapshot | None, units: str = "SI", monte_carlo: tuple = ()) -> None:
+        """Show ``snapshot`` (None: empty plots) in ``units``, with Monte Carlo points."""
+        d = display(units)
+        fs, ls, vs = d.force_scale, d.length_scale, d.velocity_scale
+        src = self.sources
+        # axis labels
+        self.gap.xaxis.axis_label = f"gap [{d.length_unit}]"
+        self.gap.yaxis[0].axis_label = f"expected extreme force [{d.force_unit}]"
+        self.psd_ground.yaxis.axis_label = f"S_g [{d.length_unit}^2/s^3]"
+        self.psd_velocity.yaxis.axis_label = f"S_V [({d.velocity_unit})^2 s]"
+        for h in self.hysteresis:
+            h.xaxis.axis_label = f"storey drift [{d.length_unit}]"
+            h.yaxis.axis_label = f"restoring force [{d.force_unit}]"
+        self.contact.yaxis.axis_label = f"pounding force [{d.force_unit}]"
+        if snapshot is None:
+            for source in src.values():
+                source.data = {key: [] for key in source.data}
+            return
+        curve = snapshot.gap_curve
+        paper = np.nan if curve.paper_force_expected is None else curve.paper_force_expected / fs
+        force = curve.force_expected / fs
+        src["gap"].data = dict(gap=curve.gaps / ls, force=force, paper=np.full(curve.gaps.size, paper), probability=curve.pounding_probability)
+        gap = snapshot.case.contact.gap / ls
+        src["current"].data = dict(gap=[gap], force=[snapshot.estimate.force_expected / fs])
+        top = np.nanmax([*force, paper, 0.0])
+        src["marker"].data = dict(gap=[gap, gap], force=[0.0, top])
+        points = [m for m in monte_carlo if math.isfinite(m.force_low)]
+        src["mc"].data = dict(
+            gap=[m.gap / ls for m in points], force=[m.force_max_mean / fs for m in points], low=[m.force_low / fs for m in points],
+            high=[m.force_high / fs for m in points], fraction=[m.pounding_fraction for m in points],
+        )
+        velocity = np.where(snapshot.psd_velocity > 0, snapshot.psd_velocity, np.nan)
+        if np.any(np.isfinite(velocity)):
+            velocity = np.where(velocity < np.nanmax(velocity) * 1e-8, np.nan, velocity)  # its fall to 0 past the cutoff
+        src["psd"].data = dict(omega=snapshot.omega, ground=snapshot.psd_ground / ls**2, velocity=velocity / vs**2)
+        history = snapshot.history
+        for b in (1, 2):
+            if history is None:
+                src[f"hysteresis{b}"].data = dict(drift=[], force=[], equivalent=[])
+                src[f"impact{b}"].data = dict(drift=[], force=[])
+                continue
+            column = history.floor(b, 1)
+            drift = history.drift[:, column] / ls
+            restoring = history.storey_force[:, column] / fs
+            src[f"hysteresis{b}"].data = dict(drift=drift, force=restoring, equivalent=snapshot.equivalent_force[b - 1][:, 0] / fs)
+            impact = history.contact_force > 0
+            src[f"impact{b}"].data = dict(drift=drift[impact], force=restoring[impact])
+        if history is None:
+            src["contact"].data = dict(time=[], force=[])
+        else:
+            src["contact"].data = dict(time=history.time, force=history.contact_force / fs)
 
 
 # --- the static report ---------------------------------------------------------
@@ -466,11 +473,10 @@ def _case_table(case: Case, units: str) -> str:
 def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None) -> str:
     """The report as one HTML document: every script and style inline."""
     from bokeh.embed import file_html
-    from bokeh.layouts import column
+    from bokeh.layouts import column, row
     from bokeh.models import Div
     from bokeh.resources import INLINE
 
-    hv = _hv()
     case = snapshot.case
     title = title or f"pounding report: {case.name}"
     matching = [m for m in snapshot.monte_carlo if m.gap == case.contact.gap]
@@ -493,12 +499,16 @@ def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None)
         ),
         sizing_mode="stretch_width",
     )
-    figures = [
-        hv.render(gap_plot(snapshot, units, snapshot.monte_carlo), backend="bokeh"),
-        hv.render(psd_plot(snapshot, units), backend="bokeh"),
-        hv.render(hysteresis_plot(snapshot, units), backend="bokeh"),
-    ]
-    layout = column(header, *figures, sizing_mode="stretch_width")
+    figures = Figures()
+    figures.fill(snapshot, units, snapshot.monte_carlo)
+    layout = column(
+        header,
+        figures.gap,
+        row(figures.psd_ground, figures.psd_velocity, sizing_mode="stretch_width"),
+        row(*figures.hysteresis, sizing_mode="stretch_width"),
+        figures.contact,
+        sizing_mode="stretch_width",
+    )
     return _without_server_scripts(file_html(layout, resources=INLINE, title=title))
 
 

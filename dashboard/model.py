@@ -1,0 +1,377 @@
+"""The dashboard's model: the case's inputs as parameters, and what they give.
+
+The inputs mirror the case file (README.md): they are assembled into the
+file's schema, in the unit system chosen for display, and handed to
+``pounding.case.case_from_dict``, so the library converts units, derives
+stiffness from period and validates, and its ``CaseError`` names the field
+exactly as a case file would. Every output comes from
+``pounding.report.compute_snapshot`` (one linearization per change). The
+reduced-sample Monte Carlo runs on a worker thread; its progress and result
+come back to the session's event loop.
+
+No Panel here: the view (``app.py``) builds widgets from these parameters.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import threading
+from concurrent.futures import ThreadPoolExecutor
+from typing import Callable
+
+import param
+
+from pounding import simulate
+from pounding.case import DEFAULT_PRESET, case_from_dict, load_case, preset_names
+from pounding.contact import CONTACT_MODELS
+from pounding.errors import CaseError, ConvergenceError, SimulationError
+from pounding.excitation import CloughPenzien
+from pounding.report import DEFAULT_SEED, MonteCarloPoint, compute_snapshot
+from pounding.simulation import Cancelled
+from pounding.units import UNIT_SYSTEMS, unit_system
+
+__all__ = ["PoundingModel", "INPUTS", "DIMENSIONS"]
+
+_EXECUTOR = ThreadPoolExecutor(max_workers=2, thread_name_prefix="pounding-mc")
+"""Shared by all sessions: at most two studies at a time (each uses every core)."""
+
+MAX_STOREYS = 10
+
+
+def _building_params(number: int, period: float) -> dict:
+    b = f"building {number}"
+    return {
+        f"storeys_{number}": param.Integer(1, bounds=(1, MAX_STOREYS), label=f"storeys", doc=f"Number of storeys of {b}; all alike."),
+        f"period_{number}": param.Number(
+            period, bounds=(0.05, 5.0), step=0.05, label="period T [s]",
+            doc=f"Initial period of {b} [s] (one storey: with the mass it fixes the stiffness; more storeys: the fundamental period, shown).",
+        ),
+        f"mass_{number}": param.Number(4e4, label="storey mass", doc=f"Floor mass of each storey of {b} [mass unit]."),
+        f"stiffness_{number}": param.Number(
+            1e6, label="storey stiffness", doc=f"Initial stiffness of each storey of {b} [force/length] (one storey: from the period, shown)."
+        ),
+        f"damping_ratio_{number}": param.Number(0.05, bounds=(0.0, 0.3), step=0.01, label="damping ratio [-]", doc="Viscous damping ratio of the first mode."),
+        f"alpha_{number}": param.Number(0.05, bounds=(0.0, 1.0), step=0.01, label="Bouc-Wen alpha [-]", doc="Post-yield to initial stiffness ratio."),
+        f"A_{number}": param.Number(1.0, bounds=(0.1, 3.0), step=0.05, label="Bouc-Wen A [-]", doc="Amplitude of the hysteretic rate."),
+        f"beta_{number}": param.Number(200.0, label="Bouc-Wen beta", doc="Shape parameter [1/length^n]; beta + gamma > 0."),
+        f"gamma_{number}": param.Number(-100.0, label="Bouc-Wen gamma", doc="Shape parameter [1/length^n]; beta - gamma >= 0."),
+        f"n_{number}": param.Number(1.0, bounds=(0.5, 4.0), step=0.5, label="Bouc-Wen n [-]", doc="Smoothness of yielding, >= 1."),
+    }
+
+
+def _dimensions(model: PoundingModel) -> dict[str, dict]:
+    """Dimension (exponents of length, force, mass) of each dimensional input."""
+    exponent = 1.0 if model.contact_model == "linear" else 1.5
+    dims = {
+        "G0": {"length": 2},
+        "gap": {"length": 1},
+        "contact_stiffness": {"force": 1, "length": -exponent},
+    }
+    for b in (1, 2):
+        n = getattr(model, f"n_{b}")
+        dims |= {f"mass_{b}": {"mass": 1}, f"stiffness_{b}": {"force": 1, "length": -1}, f"beta_{b}": {"length": -n}, f"gamma_{b}": {"length": -n}}
+    return dims
+
+
+DIMENSIONS = _dimensions
+"""``DIMENSIONS(model)``: the dimensional inputs and their dimensions."""
+
+
+class PoundingModel(param.Parameterized):
+    """Inputs of a case (in the display unit system) and the results for it."""
+
+    preset = param.Selector(default=DEFAULT_PRESET, objects=preset_names(), doc="A built-in case (the paper's Sections 5 and 6).")
+    units = param.Selector(default="SI", objects=list(UNIT_SYSTEMS), label="units", doc="Unit system of the inputs and results.")
+
+    locals().update(_building_params(1, 1.2))
+    locals().update(_building_params(2, 0.4))
+
+    level_1 = param.Integer(1, bounds=(1, MAX_STOREYS), label="contact storey of building 1", doc="Floor of building 1 that meets building 2.")
+    level_2 = param.Integer(1, bounds=(1, MAX_STOREYS), label="contact storey of building 2", doc="Floor of building 2 that meets building 1.")
+    gap = param.Number(0.01, label="gap", doc="Separation at rest [length].")
+    contact_stiffness = param.Number(2e9, label="contact stiffness", doc="Impact stiffness [force/length^1.5], linear law [force/length].")
+    restitution = param.Number(0.65, bounds=(0.0, 1.0), step=0.05, label="restitution e [-]", doc="Coefficient of restitution, 0 < e <= 1.")
+    contact_model = param.Selector(default="jankowski", objects=list(CONTACT_MODELS), label="contact model")
+
+    G0 = param.Number(6.503e-3, label="G0", doc="Two-sided white-noise intensity of the Kanai-Tajimi filter [length^2/s^3].")
+    omega_g = param.Number(27.02, bounds=(1.0, 80.0), step=0.5, label="omega_g [rad/s]", doc="Ground frequency.")
+    xi_g = param.Number(0.34, bounds=(0.05, 1.0), step=0.01, label="xi_g [-]", doc="Ground damping ratio.")
+    duration = param.Number(20.0, bounds=(2.0, 60.0), step=1.0, label="duration [s]", doc="Record duration.")
+    envelope = param.Selector(default="none", objects=["none", "shinozuka-sato"], label="envelope", doc="Stationary, or the Shinozuka-Sato envelope (Eq. 9).")
+
+    records = param.Integer(40, bounds=(10, 500), step=10, label="records", doc="Records of the reduced-sample Monte Carlo study.")
+    seed = param.Integer(DEFAULT_SEED, bounds=(0, None), label="seed", doc="Seed of the study.")
+
+    # --- outputs (not inputs) ---
+    snapshot = param.Parameter(None, precedence=-1, doc="pounding.report.Snapshot of the current case, or None when the inputs are invalid.")
+    error = param.String("", precedence=-1, doc="Why there is no snapshot (names the input).")
+    mc_running = param.Boolean(False, precedence=-1)
+    mc_progress = param.Integer(0, bounds=(0, 100), precedence=-1)
+    mc_status = param.String("", precedence=-1)
+    mc_points = param.List([], precedence=-1, doc="MonteCarloPoint of the current case (any gap).")
+
+    def __init__(self, schedule: Callable[[Callable[[], None]], None] | None = None, batch=None, **params):
+        """``schedule(fn)`` runs ``fn`` on the session's event loop (default: at once);
+        ``batch()`` is a context manager around each update of the outputs (the
+        view batches the page's updates with it)."""
+        super().__init__(**params)
+        self._schedule = schedule or (lambda fn: fn())
+        self._batch = batch or contextlib.nullcontext
+        self._syncing = False
+        self._extra_excitation: dict = {}
+        self._cancel: threading.Event | None = None
+        self._mc_case_key = None
+        self._load_preset()
+
+    # --- inputs <-> case ---------------------------------------------------------
+
+    def case_data(self) -> dict:
+        """The inputs as a case file's contents (README.md schema), in ``units``."""
+        buildings = []
+        for b in (1, 2):
+            get = lambda name: getattr(self, f"{name}_{b}")  # noqa: E731
+            bouc_wen = {"alpha": get("alpha"), "A": get("A"), "beta": get("beta"), "gamma": get("gamma"), "n": get("n")}
+            if get("storeys") == 1:
+                storeys = [{"mass": get("mass"), "period": get("period"), "bouc_wen": bouc_wen}]
+            else:
+                storeys = [{"mass": get("mass"), "stiffness": get("stiffness"), "bouc_wen": dict(bouc_wen)} for _ in range(get("storeys"))]
+            buildings.append({"damping_ratio": get("damping_ratio"), "storeys": storeys})
+        excitation = {"G0": self.G0, "omega_g": self.omega_g, "xi_g": self.xi_g, "duration": self.duration, "envelope": self.envelope}
+        excitation |= {k: v for k, v in self._extra_excitation.items() if self.envelope == "shinozuka-sato" or k not in ("B1", "B2")}
+        return {
+            "units": self.units,
+            "name": self.preset,
+            "description": self._description,
+            "excitation": excitation,
+            "buildings": buildings,
+            "contact": {
+                "model": self.contact_model,
+                "gap": self.gap,
+                "stiffness": self.contact_stiffness,
+                "restitution": self.restitution,
+                "levels": [self.level_1, self.level_2],
+            },
+        }
+
+    def _values_from_case(self, case) -> dict:
+        """Input values showing ``case`` (SI) in the current unit system."""
+        u = unit_system(self.units)
+        values = {}
+        for b, building in enumerate(case.buildings, start=1):
+            storey = building.storeys[0]
+            bw = storey.bouc_wen
+            values |= {
+                f"storeys_{b}": building.n_storeys,
+                f"period_{b}": float(building.periods[0]),
+                f"mass_{b}": u.from_si(storey.mass, mass=1),
+                f"stiffness_{b}": u.from_si(storey.stiffness, force=1, length=-1),
+                f"damping_ratio_{b}": building.damping_ratio,
+                f"alpha_{b}": bw.alpha,
+                f"A_{b}": bw.A,
+                f"beta_{b}": u.from_si(bw.beta, length=-bw.n),
+                f"gamma_{b}": u.from_si(bw.gamma, length=-bw.n),
+                f"n_{b}": bw.n,
+            }
+        contact = case.contact
+        spectrum = case.excitation.spectrum
+        values |= {
+            "level_1": contact.levels[0],
+            "level_2": contact.levels[1],
+            "gap": u.from_si(contact.gap, length=1),
+            "contact_stiffness": u.from_si(contact.stiffness, force=1, length=-contact.stiffness_exponent),
+            "restitution": contact.restitution,
+            "contact_model": contact.model,
+            "G0": u.from_si(spectrum.G0, length=2),
+            "omega_g": spectrum.omega_g,
+            "xi_g": spectrum.xi_g,
+            "duration": case.excitation.duration,
+            "envelope": "none" if case.excitation.stationary else "shinozuka-sato",
+        }
+        return values
+
+    def _load_preset(self) -> None:
+        case = load_case(self.preset)
+        self._description = case.description
+        excitation = case.excitation
+        extra = {"time_step": excitation.time_step, "cutoff_frequency": excitation.cutoff_frequency}
+        if isinstance(excitation.spectrum, CloughPenzien):
+            extra |= {"spectrum": "clough-penzien", "omega_f": excitation.spectrum.omega_f, "xi_f": excitation.spectrum.xi_f}
+        envelope = excitation.envelope
+        extra |= {"B1": envelope.B1, "B2": envelope.B2} if envelope is not None else {"B1": 0.085, "B2": 0.17}
+        self._extra_excitation = extra
+        self._syncing = True
+        try:
+            self.param.update(**self._values_from_case(case))
+        finally:
+            self._syncing = False
+        self.recompute()
+
+    @param.depends("preset", watch=True)
+    def _on_preset(self):
+        self._load_preset()
+
+    @param.depends("units", watch=True)
+    def _on_units(self):
+        """Convert the dimensional inputs to the new unit system (the case is unchanged)."""
+        old = unit_system(self._shown_units)
+        new = unit_system(self.units)
+        values = {}
+        for name, dims in _dimensions(self).items():
+            values[name] = new.from_si(old.to_si(getattr(self, name), **dims), **dims)
+        self._syncing = True
+        try:
+            self.param.update(**values)
+        finally:
+            self._syncing = False
+        self.recompute()
+
+    # --- outputs -------------------------------------------------------------------
+
+    def build_case(self):
+        """The case of the current inputs (raises CaseError naming the input)."""
+        return case_from_dict(self.case_data(), name=self.preset)
+
+    def recompute(self) -> None:
+        """Recompute every output for the current inputs."""
+        self._shown_units = self.units
+        try:
+            case = self.build_case()
+            snapshot = compute_snapshot(case, seed=self.seed, monte_carlo=())
+        except (CaseError, ConvergenceError, SimulationError) as error:
+            with self._batch():
+                self._invalidate_monte_carlo(None)
+                self.param.update(snapshot=None, error=_message(error))
+            return
+        self._invalidate_monte_carlo(case)
+        # Show the derived storey data (stiffness for one storey, period for more).
+        derived = {}
+        for b, building in enumerate(case.buildings, start=1):
+            if building.n_storeys == 1:
+                derived[f"stiffness_{b}"] = unit_system(self.units).from_si(building.storeys[0].stiffness, force=1, length=-1)
+            else:
+                derived[f"period_{b}"] = min(max(float(building.periods[0]), 0.05), 5.0)
+        with self._batch():
+            self._syncing = True
+            try:
+                self.param.update(**derived)
+            finally:
+                self._syncing = False
+            self.param.update(snapshot=snapshot, error="")
+
+    @param.depends(
+        *[f"{name}_{b}" for b in (1, 2) for name in ("storeys", "period", "mass", "stiffness", "damping_ratio", "alpha", "A", "beta", "gamma", "n")],
+        "level_1", "level_2", "gap", "contact_stiffness", "restitution", "contact_model",
+        "G0", "omega_g", "xi_g", "duration", "envelope", "seed",
+        watch=True,
+    )
+    def _on_input(self):
+        if not self._syncing:
+            self.recompute()
+
+    # --- Monte Carlo ---------------------------------------------------------------
+
+    @staticmethod
+    def _key(case):
+        """What a study depends on apart from the gap (its points share one plot)."""
+        if case is None:
+            return None
+        from dataclasses import replace
+
+        return replace(case, contact=replace(case.contact, gap=0.0))
+
+    def _invalidate_monte_carlo(self, case) -> None:
+        """A change of inputs: cancel a running study; drop points of another case."""
+        key = self._key(case)
+        if self._cancel is not None and not self._cancel.is_set():
+            self._cancel.set()
+            self.mc_status = "Monte Carlo cancelled: the inputs changed while it ran."
+        if key != self._mc_case_key:
+            self._mc_case_key = key
+            if self.mc_points:
+                self.mc_points = []
+                if not self.mc_running:
+                    self.mc_status = "Monte Carlo results cleared: the inputs changed."
+
+    def monte_carlo_for_current_gap(self) -> MonteCarloPoint | None:
+        """The latest study of exactly the current case, if any."""
+        if self.snapshot is None:
+            return None
+        gap = self.snapshot.case.contact.gap
+        matching = [m for m in self.mc_points if m.gap == gap]
+        return matching[-1] if matching else None
+
+    def run_monte_carlo(self) -> None:
+        """Start a study of the current case on a worker thread."""
+        if self.mc_running or self.snapshot is None:
+            return
+        case = self.snapshot.case
+        key = self._key(case)
+        records, seed = self.records, self.seed
+        cancel = threading.Event()
+        self._cancel = cancel
+        self.param.update(mc_running=True, mc_progress=0, mc_status=f"Monte Carlo: 0 of {records} records")
+
+        def progress(done: int, total: int) -> None:
+            if not cancel.is_set():
+                self._schedule(lambda: self._progress(cancel, done, total))
+
+        def work():
+            try:
+                result = simulate(case, records, seed, progress=progress, cancel=cancel)
+            except Cancelled:
+                self._schedule(lambda: self._finished(cancel, None, None, key))
+            except Exception as error:  # shown in the page, never a traceback
+                self._schedule(lambda: self._finished(cancel, None, _message(error), key))
+            else:
+                self._schedule(lambda: self._finished(cancel, result, None, key))
+
+        _EXECUTOR.submit(work)
+
+    def cancel_monte_carlo(self) -> None:
+        if self._cancel is not None and not self._cancel.is_set():
+            self._cancel.set()
+            self.mc_status = "Monte Carlo: cancelling..."
+
+    def _progress(self, cancel, done, total):
+        if cancel is self._cancel and not cancel.is_set():
+            self.param.update(mc_progress=int(100 * done / total), mc_status=f"Monte Carlo: {done} of {total} records")
+
+    def _finished(self, cancel, result, error, key):
+        if cancel is not self._cancel:
+            return
+        self._cancel = None
+        if result is not None and not cancel.is_set() and key == self._mc_case_key:
+            point = MonteCarloPoint.from_result(result)
+            self.param.update(
+                mc_running=False, mc_progress=100, mc_points=[*self.mc_points, point],
+                mc_status=f"Monte Carlo done: {result.n_records} records.",
+            )
+        elif error is not None:
+            self.param.update(mc_running=False, mc_status=f"Monte Carlo failed: {error}")
+        else:
+            self.param.update(mc_running=False, mc_progress=0, mc_status=self.mc_status if "changed" in self.mc_status else "Monte Carlo cancelled.")
+
+
+_LABELS = {
+    "period": "period", "mass": "storey mass", "stiffness": "storey stiffness", "damping_ratio": "damping ratio",
+    "bouc_wen.alpha": "Bouc-Wen alpha", "bouc_wen.A": "Bouc-Wen A", "bouc_wen.beta": "Bouc-Wen beta",
+    "bouc_wen.gamma": "Bouc-Wen gamma", "bouc_wen.n": "Bouc-Wen n",
+}
+
+
+def _message(error: Exception) -> str:
+    """One line naming the input: the case file's field, then the widget's name."""
+    if isinstance(error, CaseError):
+        field = error.field
+        parts = field.split(".")
+        where = ""
+        if parts[0] == "buildings" and len(parts) >= 2:
+            rest = ".".join(parts[4:]) if len(parts) >= 4 and parts[2] == "storeys" else ".".join(parts[2:])
+            where = f"building {parts[1]}, {_LABELS.get(rest, rest)}" if rest else f"building {parts[1]}"
+        elif parts[0] == "contact":
+            where = f"contact {'.'.join(parts[1:])}"
+        elif parts[0] == "excitation":
+            where = f"excitation {'.'.join(parts[1:])}"
+        prefix = f"{where} ({field})" if where else field
+        return f"Invalid input: {prefix}: {error.message}"
+    return f"{type(error).__name__}: {error}"
