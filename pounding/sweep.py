@@ -69,9 +69,10 @@ __all__ = [
     "EPILOG",
 ]
 
-CHUNK_RECORDS = 50
-"""Default records per chunk: about 0.6 s of work for 20 s records, against a
-few milliseconds of Dask overhead per task (``benchmarks/sweep.py``)."""
+CHUNK_RECORDS = 100
+"""Default records per chunk: about 0.4 s of work for 20 s records of two
+SDOF buildings, against a few milliseconds of overhead per chunk
+(``benchmarks/sweep.py``)."""
 
 TABLE_FORMATS = ("csv", "parquet")
 DEFAULT_TOLERANCE = 1e-6
@@ -425,8 +426,11 @@ def _warm(data: dict) -> None:
     """Load the numba kernels in this process once (about 1 s from the disk cache)."""
     global _WARM
     if not _WARM:
-        point_estimate(data)
-        chunk_sums(data, 0, 0, 1)
+        try:
+            point_estimate(data)
+            chunk_sums(data, 0, 0, 1)
+        except Exception:  # noqa: BLE001  warming is best effort: the task itself will report the error
+            return
         _WARM = True
 
 
@@ -479,6 +483,16 @@ class _Store:
 
     def chunk_path(self, point: _Point, first: int, count: int) -> Path:
         return self.point_dir(point) / f"chunk-{first:09d}-{count}.json"
+
+    def write_manifest(self, manifest: dict) -> None:
+        if self.root.exists() and not self.root.is_dir():
+            raise CaseError("output", f"{str(self.root)!r} exists and is not a folder")
+        _write_json(self.root / "sweep.json", manifest)
+
+    def write_point(self, point: _Point, paths: list[str]) -> None:
+        path = self.point_dir(point) / "point.json"
+        if not path.exists():
+            _write_json(path, {"values": dict(zip(paths, point.values)), "case": point.data})
 
     def estimate(self, point: _Point) -> dict | None:
         value = _read_json(self.estimate_path(point))
@@ -579,7 +593,7 @@ def _run_tasks(tasks: list[_Task], client, seed: int, tolerance: float, done: Ca
     def submit(task: _Task):
         function, arguments = call(task)
         label = f"chunk-{task.first}" if task.is_chunk else "estimate"
-        future = client.submit(function, *arguments, key=f"pounding-sweep-{task.point.key}-{label}", retries=1)
+        future = client.submit(function, *arguments, key=f"pounding-sweep-{task.point.key}-{label}")
         pending[future] = task
         return future
 
@@ -596,6 +610,61 @@ def _run_tasks(tasks: list[_Task], client, seed: int, tolerance: float, done: Ca
     finally:
         for future in pending:
             future.cancel()
+
+
+def _missing(points: list[_Point], chunks: list[tuple[int, int]], store: _Store) -> tuple[list[_Task], int]:
+    """The tasks whose files are missing (or unreadable), and the number of chunks found done."""
+    tasks, found = [], 0
+    for point in points:
+        if store.estimate(point) is None:
+            tasks.append(_Task(point))
+        for first, count in chunks:
+            if store.chunk(point, first, count) is None:
+                tasks.append(_Task(point, first, count))
+            else:
+                found += 1
+    return tasks, found
+
+
+def _within_budget(tasks: list[_Task], max_chunks: int) -> list[_Task]:
+    """The first ``max_chunks`` chunk tasks, and every estimate task."""
+    kept = []
+    for task in tasks:
+        if task.is_chunk:
+            if max_chunks == 0:
+                continue
+            max_chunks -= 1
+        kept.append(task)
+    return kept
+
+
+def _compute(tasks: list[_Task], store: _Store, scheduler, workers, seed: int, tolerance: float,
+             progress: Callable[[int, int], None] | None, done: int, total: int) -> int:
+    """Run ``tasks``, saving each result as it arrives; returns the chunks computed."""
+    computed = 0
+    if progress is not None:
+        progress(done, total)
+
+    def finished(task: _Task, result: dict) -> None:
+        nonlocal computed, done
+        if not task.is_chunk:
+            _write_json(store.estimate_path(task.point), result)
+            return
+        _write_json(store.chunk_path(task.point, task.first, task.count), result)
+        computed += 1
+        done += task.count
+        if progress is not None:
+            progress(done, total)
+
+    if tasks:
+        client = _Client(scheduler, workers)
+        try:
+            if client.client is not None:
+                client.client.run(_warm, tasks[0].point.data)
+            _run_tasks(tasks, client.client, seed, tolerance, finished)
+        finally:
+            client.close()
+    return computed
 
 
 def sweep(
@@ -699,81 +768,38 @@ def sweep(
     Settings(tolerance=tolerance)  # validates it
     data, name = _case_data(case)
     varied = _normalized_vary(vary)
-    points = _points(data, name, varied, seed, tolerance)
-    root = Path(output_dir)
-    if root.exists() and not root.is_dir():
-        raise CaseError("output", f"{str(root)!r} exists and is not a folder")
-    store = _Store(root)
     paths = [path for path, _ in varied]
+    points = _points(data, name, varied, seed, tolerance)
+    store = _Store(Path(output_dir))
     units = str(data.get("units", "SI"))
-    _write_json(root / "sweep.json", {
+    store.write_manifest({
         "case": name, "units": units, "vary": {path: list(values) for path, values in varied}, "records": records,
         "seed": seed, "chunk_records": chunk_records, "tolerance": tolerance,
         "points": [{"point": p.index, "key": p.key, **dict(zip(paths, p.values))} for p in points],
     })
+    for point in points:
+        store.write_point(point, paths)
 
     chunks = _chunks(records, chunk_records)
-    tasks, reused, done_records = [], 0, 0
-    for point in points:
-        if store.estimate(point) is None:
-            tasks.append(_Task(point))
-        for first, count in chunks:
-            if store.chunk(point, first, count) is None:
-                tasks.append(_Task(point, first, count))
-            else:
-                reused += 1
-                done_records += count
-        if not store.point_dir(point).joinpath("point.json").exists():
-            _write_json(store.point_dir(point) / "point.json", {"values": dict(zip(paths, point.values)), "case": point.data})
-    total_records = records * len(points)
-    if progress is not None:
-        progress(done_records, total_records)
+    tasks, reused = _missing(points, chunks, store)
     missing = sum(task.is_chunk for task in tasks)
     if max_chunks is not None and missing > max_chunks:
-        # Drop the chunks beyond the budget; their points' estimates still run.
-        kept, budget = [], max_chunks
-        for task in tasks:
-            if task.is_chunk:
-                if budget == 0:
-                    continue
-                budget -= 1
-            kept.append(task)
-        tasks = kept
-
-    computed = 0
-
-    def finished(task: _Task, result: dict) -> None:
-        nonlocal computed, done_records
-        if task.is_chunk:
-            _write_json(store.chunk_path(task.point, task.first, task.count), result)
-            computed += 1
-            done_records += task.count
-            if progress is not None:
-                progress(done_records, total_records)
-        else:
-            _write_json(store.estimate_path(task.point), result)
-
-    if tasks:
-        client = _Client(scheduler, workers)
-        try:
-            if client.client is not None:
-                client.client.run(_warm, points[0].data)
-            _run_tasks(tasks, client.client, seed, tolerance, finished)
-        finally:
-            client.close()
-    if max_chunks is not None and missing > max_chunks:
+        tasks = _within_budget(tasks, max_chunks)
+    found = sum(count for _, count in chunks) * len(points) - sum(task.count for task in tasks if task.is_chunk)
+    computed = _compute(tasks, store, scheduler, workers, seed, tolerance, progress, found, records * len(points))
+    if computed < missing:
         raise SweepInterrupted(
             f"stopped after {computed} chunk(s), {missing - computed} still missing; rerun to resume", computed, missing - computed
         )
 
     table = _table(points, paths, chunks, store, records, seed)
     table.attrs.update(chunks_computed=computed, chunks_reused=reused, units=units)
-    table_path = root / f"sweep.{table_format}"
+    table_path = store.root / f"sweep.{table_format}"
     _write_table(table, table_path, table_format)
     table.attrs["table"] = str(table_path)
     table.attrs["chart"] = None
     if chart:
-        table.attrs["chart"] = str(write_chart(table, paths, root / "sweep.html", units=units, title=f"Sweep of {name}"))
+        table.attrs["chart"] = str(write_chart(table, paths, store.root / "sweep.html", units=units, title=f"Sweep of {name}"))
     return table
 
 

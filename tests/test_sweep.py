@@ -141,13 +141,17 @@ def test_the_table_does_not_depend_on_chunking(tmp_path, serial_table):
 
 
 def test_two_worker_local_cluster_equals_serial_exactly(tmp_path, serial_table):
+    table = run_sweep(tmp_path / "local", scheduler=None, workers=2, chunk_records=2)  # the default: a LocalCluster
+    assert table.attrs["chunks_computed"] == 6 * 3
+    pd.testing.assert_frame_equal(table, serial_table, check_exact=True)
+
+
+def test_a_cluster_given_by_its_scheduler_address(tmp_path, serial_table):
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
             distributed.Client(cluster) as client:
-        table = run_sweep(tmp_path / "dask", scheduler=client, chunk_records=2)
-        assert len(client.nthreads()) == 2
-        assert sum(client.run(lambda: __import__("pounding.sweep").sweep._WARM).values()) == 2  # both workers ran
-    assert table.attrs["chunks_computed"] == 6 * 3
+        table = run_sweep(tmp_path / "address", scheduler=cluster.scheduler_address, chunk_records=4)
+        assert list(client.run(lambda: __import__("pounding.sweep").sweep._WARM).values()) == [True, True]  # both warmed
     pd.testing.assert_frame_equal(table, serial_table, check_exact=True)
 
 
