@@ -592,7 +592,7 @@ def _run_tasks(tasks: list[_Task], client, seed: int, tolerance: float, done: Ca
 
     def submit(task: _Task):
         function, arguments = call(task)
-        label = f"chunk-{task.first}" if task.is_chunk else "estimate"
+        label = f"chunk-{task.first}-{task.count}" if task.is_chunk else "estimate"
         future = client.submit(function, *arguments, key=f"pounding-sweep-{task.point.key}-{label}")
         pending[future] = task
         return future

@@ -5,7 +5,6 @@ a killed client, bad --vary specs."""
 import argparse
 import json
 import math
-import os
 import signal
 import subprocess
 import sys
@@ -103,6 +102,18 @@ def test_bad_paths_and_values_are_refused_before_any_work(tmp_path, vary, field,
         sweep(short_case(), vary, records=2, output_dir=tmp_path / "out", scheduler="serial")
     assert error.value.field == field
     assert not (tmp_path / "out").exists()
+
+
+def test_parquet_is_written_or_refused_in_one_line(tmp_path):
+    try:
+        import pyarrow  # noqa: F401
+    except ImportError:
+        with pytest.raises(CaseError, match="parquet needs pyarrow") as error:
+            run_sweep(tmp_path / "parquet", table_format="parquet")
+        assert error.value.field == "format"
+    else:
+        table = run_sweep(tmp_path / "parquet", records=2, table_format="parquet")
+        pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "parquet" / "sweep.parquet"), table, check_like=True)
 
 
 # --- the numbers ------------------------------------------------------------------------------------
