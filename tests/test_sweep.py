@@ -186,6 +186,21 @@ def test_interrupted_sweep_resumes_with_only_the_missing_chunks(tmp_path, serial
     assert pd.read_csv(folder / "sweep.csv")["mc_force_mean_N"].tolist() == pytest.approx(serial_table["mc_force_mean_N"].tolist(), rel=1e-15)
 
 
+def test_ctrl_c_keeps_the_finished_chunks(tmp_path, serial_table):
+    folder = tmp_path / "ctrl-c"
+
+    def interrupt(done, total):
+        if done >= 3 * 2:  # after the third chunk of 2 records
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(folder, progress=interrupt)
+    assert len(chunk_files(folder)) == 3
+    table = run_sweep(folder)
+    assert (table.attrs["chunks_computed"], table.attrs["chunks_reused"]) == (15, 3)
+    pd.testing.assert_frame_equal(table, serial_table, check_exact=True)
+
+
 def test_a_damaged_chunk_file_is_recomputed(tmp_path, serial_table):
     folder = tmp_path / "damaged"
     run_sweep(folder)
