@@ -512,14 +512,18 @@ def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None)
     return _without_server_scripts(file_html(layout, resources=INLINE, title=title))
 
 
-_SERVER_SCRIPT = re.compile(r'<script[^>]*\bsrc="(?!data:)[^"]*"[^>]*>\s*</script>\s*')
+_EXTERNAL = re.compile(
+    r'<script[^>]*\bsrc="(?!data:)[^"]*"[^>]*>\s*</script>\s*|<link[^>]*\brel="stylesheet"[^>]*\bhref="(?!data:)[^"]*"[^>]*>\s*'
+)
 
 
 def _without_server_scripts(text: str) -> str:
-    """Drop ``<script src=...>`` tags: with Panel imported, Bokeh's inline bundle
-    still names a server-relative shim (for Panel's ES modules, unused here)
-    that a file cannot load; everything the report runs is inline."""
-    return _SERVER_SCRIPT.sub("", text)
+    """Drop ``<script src=...>`` and stylesheet ``<link>`` tags: with Panel
+    imported (as in the dashboard's server), Bokeh's inline bundle still names
+    server-relative files of Panel's (an ES-module shim, Tabulator's CSS),
+    unused by the report, that a file cannot load. Everything the report
+    uses is inline."""
+    return _EXTERNAL.sub("", text)
 
 
 def write_report(path: str | os.PathLike, snapshot: Snapshot | Case, units: str = "SI", title: str | None = None) -> Path:

@@ -1,0 +1,172 @@
+"""The dashboard: its model in process, and the served page in headless Chromium."""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+
+from pounding import load_case
+from pounding.case import DEFAULT_PRESET
+from pounding.estimator import estimate
+from pounding.report import display
+from tests.browser import CANVAS_COUNT_JS, LOAD_TIMEOUT, UPDATE_TIMEOUT, browser, dashboard, dashboard_url, offline  # noqa: F401
+
+from dashboard.model import PoundingModel
+
+
+def _with_period(case, building: int, period: float):
+    """The case with one building's storey stiffness giving ``period`` at the same mass."""
+    b = case.buildings[building - 1]
+    storey = b.storeys[0]
+    stiffness = storey.mass * (2 * math.pi / period) ** 2
+    buildings = list(case.buildings)
+    buildings[building - 1] = replace(b, storeys=(replace(storey, stiffness=stiffness),))
+    return replace(case, buildings=tuple(buildings))
+
+
+def _shown_force(value: float) -> str:
+    return display("SI").force(value)
+
+
+# --- the model, in process -----------------------------------------------------
+
+
+def test_model_opens_on_the_default_preset_with_the_library_numbers():
+    model = PoundingModel()
+    case = load_case(DEFAULT_PRESET)
+    assert model.preset == DEFAULT_PRESET and model.error == ""
+    assert model.snapshot.case.buildings == case.buildings and model.snapshot.case.contact == case.contact
+    assert model.snapshot.estimate.force_expected == pytest.approx(estimate(case).force_expected, rel=1e-12)
+    assert model.period_1 == pytest.approx(1.2) and model.period_2 == pytest.approx(0.4)
+
+
+@pytest.mark.parametrize(
+    ("name", "value", "field"),
+    [("gamma_1", -300.0, "buildings.1.storeys.1.bouc_wen.beta"), ("n_2", 0.5, "buildings.2.storeys.1.bouc_wen.n"), ("restitution", 0.0, "contact.restitution")],
+)
+def test_model_names_the_bad_input_and_drops_the_result(name, value, field):
+    model = PoundingModel()
+    setattr(model, name, value)
+    assert model.snapshot is None
+    assert field in model.error and "Invalid input" in model.error
+    setattr(model, name, PoundingModel.param[name].default if name != "gamma_1" else -100.0)
+    assert model.error == "" and model.snapshot is not None
+
+
+def test_model_unit_switch_keeps_the_case():
+    model = PoundingModel()
+    before = model.snapshot.case
+    model.units = "kgf-cm-s"
+    assert model.gap == pytest.approx(1.0) and model.beta_1 == pytest.approx(2.0) and model.G0 == pytest.approx(65.03)
+    after = model.snapshot.case
+    assert after.contact.gap == pytest.approx(before.contact.gap)
+    assert after.buildings[1].storeys[0].stiffness == pytest.approx(before.buildings[1].storeys[0].stiffness, rel=1e-9)
+
+
+def test_model_monte_carlo_runs_and_a_change_makes_it_stale():
+    model = PoundingModel()
+    model.records = 10
+    model.run_monte_carlo()
+    deadline = time.monotonic() + 60
+    while model.mc_running and time.monotonic() < deadline:
+        time.sleep(0.02)
+    assert not model.mc_running and model.mc_progress == 100
+    point = model.monte_carlo_for_current_gap()
+    assert point is not None and point.records == 10 and point.force_low <= point.force_max_mean <= point.force_high
+    model.restitution = 0.6  # another case: the study is no longer shown
+    assert model.monte_carlo_for_current_gap() is None and model.mc_points == []
+
+
+def test_model_multistorey_preset_and_contact_level():
+    model = PoundingModel(preset="section6-T2-0.4")
+    assert model.storeys_1 == 2 and model.error == ""
+    model.level_2 = 3
+    assert "contact.levels" in model.error and model.snapshot is None
+
+
+# --- the served page, in Chromium ------------------------------------------------
+
+
+def _handle(page, label: str):
+    """The noUiSlider handle of the slider whose label starts with ``label``."""
+    return page.locator(".bk-input-group", has=page.get_by_text(label, exact=False)).locator(".noUi-handle").first
+
+
+def _wait_text(page, selector: str, text: str, timeout=UPDATE_TIMEOUT):
+    page.wait_for_function(
+        """([selector, text]) => { const find = (root) => { const el = root.querySelector(selector); if (el) return el;
+             for (const e of root.querySelectorAll('*')) { if (e.shadowRoot) { const f = find(e.shadowRoot); if (f) return f; } } return null; };
+             const deep = (el) => el.shadowRoot ? deep(el.shadowRoot) : Array.from(el.childNodes).map(
+               (c) => c.nodeType === 3 ? c.textContent : (c.nodeType === 1 && !['STYLE', 'SCRIPT', 'LINK'].includes(c.tagName) ? deep(c) : '')).join('');
+             const el = find(document); return el !== null && deep(el).trim() === text; }""",
+        arg=[selector, text],
+        timeout=timeout,
+    )
+
+
+@pytest.mark.browser
+def test_page_loads_without_errors_and_shows_the_default_case(dashboard):
+    expected = estimate(load_case(DEFAULT_PRESET))
+    assert dashboard.locator(".fe-recommended").inner_text() == _shown_force(expected.force_expected)
+    assert dashboard.locator(".fe-paper").inner_text() == _shown_force(expected.paper.force_expected)
+    dashboard.wait_for_function(f"() => ({CANVAS_COUNT_JS})() >= 6", timeout=LOAD_TIMEOUT)
+    assert dashboard.errors == []
+
+
+@pytest.mark.browser
+def test_changing_T2_and_restitution_changes_F_e_to_the_library_value(dashboard):
+    case = load_case(DEFAULT_PRESET)
+    _handle(dashboard, "period T2").focus()
+    dashboard.keyboard.press("ArrowRight")  # 0.40 -> 0.45 s
+    changed = _with_period(case, 2, 0.45)
+    _wait_text(dashboard, ".fe-recommended", _shown_force(estimate(changed).force_expected))
+    _handle(dashboard, "restitution").focus()
+    dashboard.keyboard.press("ArrowLeft")  # 0.65 -> 0.60
+    changed = replace(changed, contact=replace(changed.contact, restitution=0.6))
+    result = estimate(changed)
+    _wait_text(dashboard, ".fe-recommended", _shown_force(result.force_expected))
+    _wait_text(dashboard, ".fe-paper", _shown_force(result.paper.force_expected))
+    assert dashboard.errors == []
+
+
+@pytest.mark.browser
+def test_short_simulation_runs_to_completion_with_progress(dashboard):
+    dashboard.get_by_role("button", name="Run Monte Carlo").click()
+    _wait_text(dashboard, ".mc-status", "Monte Carlo done: 40 records.", timeout=60_000)
+    progress = dashboard.locator("progress").first
+    assert progress.get_attribute("value") == "100"
+    mean = dashboard.locator(".mc-mean").inner_text()
+    assert mean.endswith("kN")
+    assert dashboard.errors == []
+
+
+@pytest.mark.browser
+def test_export_downloads_a_report_that_loads_offline(dashboard, browser, tmp_path: Path):
+    shown = dashboard.locator(".fe-recommended").inner_text()
+    with dashboard.expect_download(timeout=60_000) as download:
+        dashboard.get_by_role("button", name="Export report (HTML)").click()
+    path = tmp_path / "report.html"
+    download.value.save_as(path)
+    page = browser.new_page()
+    log: list[str] = []
+    page.on("console", lambda m: log.append(m.text) if m.type == "error" else None)
+    page.route("**/*", lambda r: r.continue_() if r.request.url.startswith("file:") else (log.append(r.request.url), r.abort()))
+    page.goto(path.as_uri())
+    page.wait_for_function(f"() => ({CANVAS_COUNT_JS})() >= 6", timeout=LOAD_TIMEOUT)
+    assert page.locator(".fe-recommended").inner_text() == shown
+    assert log == []
+    page.close()
+
+
+@pytest.mark.browser
+def test_bad_value_shows_the_message_and_no_stale_number(dashboard):
+    gamma = dashboard.locator(".bk-input-group", has=dashboard.get_by_text("Bouc-Wen gamma", exact=False)).locator("input").first
+    gamma.fill("-300")
+    gamma.press("Enter")
+    dashboard.get_by_text("beta + gamma must be > 0", exact=False).first.wait_for(timeout=UPDATE_TIMEOUT)
+    assert dashboard.get_by_text("building 1, Bouc-Wen beta", exact=False).count() >= 1
+    assert dashboard.locator(".fe-recommended").count() == 0

@@ -1,0 +1,74 @@
+"""The static HTML report: self-contained, written atomically, drawn offline."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from pounding import load_case
+from pounding.case import DEFAULT_PRESET
+from pounding.estimator import estimate
+from pounding.report import compute_snapshot, display, write_report
+from tests.browser import CANVAS_COUNT_JS, LOAD_TIMEOUT, browser  # noqa: F401
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory) -> Path:
+    path = tmp_path_factory.mktemp("report") / "report.html"
+    return write_report(path, compute_snapshot(load_case(DEFAULT_PRESET)))
+
+
+def test_report_is_self_contained(report):
+    text = report.read_text()
+    markup = re.sub(r"(<script\b[^>]*>).*?</script>", r"\1</script>", text, flags=re.S)  # tags, not the inline code
+    tags = re.findall(r"<(?:script|link|img)\b[^>]*>", markup)
+    assert len(tags) >= 3
+    assert not [t for t in tags if re.search(r'\b(?:src|href)="', t)], "every script and style must be inline"
+    assert "Bokeh" in text and display("SI").force(estimate(load_case(DEFAULT_PRESET)).force_expected) in text
+
+
+def test_failed_write_leaves_no_file(tmp_path, monkeypatch):
+    import pounding.report as module
+
+    snapshot = compute_snapshot(load_case(DEFAULT_PRESET))
+
+    def broken(*args, **kwargs):
+        return "<html>" + "x" * 1000  # half written ...
+
+    class Killed(Exception):
+        pass
+
+    original = module.os.fsync
+
+    def killed(fd):
+        raise Killed("killed while writing")
+
+    monkeypatch.setattr(module.os, "fsync", killed)
+    target = tmp_path / "report.html"
+    with pytest.raises(Killed):
+        write_report(target, snapshot)
+    assert list(tmp_path.iterdir()) == []
+    # an existing report survives a failed rewrite untouched
+    monkeypatch.setattr(module.os, "fsync", original)
+    write_report(target, snapshot)
+    before = target.read_bytes()
+    monkeypatch.setattr(module.os, "fsync", killed)
+    with pytest.raises(Killed):
+        write_report(target, snapshot)
+    assert target.read_bytes() == before and [p.name for p in tmp_path.iterdir()] == ["report.html"]
+
+
+@pytest.mark.browser
+def test_report_loads_offline_with_its_plots(report, browser):
+    page = browser.new_page()
+    problems: list[str] = []
+    page.on("console", lambda m: problems.append(m.text) if m.type == "error" else None)
+    page.on("pageerror", lambda e: problems.append(str(e)))
+    page.route("**/*", lambda r: r.continue_() if r.request.url.startswith("file:") else (problems.append(r.request.url), r.abort()))
+    page.goto(report.as_uri())
+    page.wait_for_function(f"() => ({CANVAS_COUNT_JS})() >= 6", timeout=LOAD_TIMEOUT)
+    assert page.locator(".fe-recommended").inner_text().endswith("kN")
+    assert problems == []
+    page.close()
