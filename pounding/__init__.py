@@ -31,20 +31,28 @@ _EXPORTS = {
     "integrate": "simulation",
     "simulate": "simulation",
     "simulate_record": "simulation",
+    "estimate": "estimator",
+    "force_versus_gap": "estimator",
     "BoucWen": "structures",
     "Building": "structures",
     "Storey": "structures",
 }
 
-__all__ = sorted(_EXPORTS)
+_SUBMODULES = ("sweep",)
+
+__all__ = sorted([*_EXPORTS, *_SUBMODULES])
 
 
 def __getattr__(name: str):
     if name in _EXPORTS:
         value = getattr(import_module(f".{_EXPORTS[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'pounding' has no attribute {name!r}")
+    elif name in _SUBMODULES:
+        # pounding.sweep is the (callable) module: pounding.sweep(...) runs a sweep.
+        value = import_module(f".{name}", __name__)
+    else:
+        raise AttributeError(f"module 'pounding' has no attribute {name!r}")
+    globals()[name] = value
+    return value
 
 
 def __dir__():

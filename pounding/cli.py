@@ -17,6 +17,7 @@ _EPILOG = """examples:
   pounding estimate section5-T2-0.4
   pounding simulate section5-T2-0.4 --records 300 --seed 1
   pounding validate --records 300
+  pounding sweep section5-T2-0.4 --vary contact.gap=0:5:11 --records 200 -o results/
   pounding simulate my_case.toml --records 50 --json
   pounding dashboard --port 5006
 """
@@ -112,6 +113,16 @@ def _parser() -> argparse.ArgumentParser:
                           help="instead of the paper's tables: both estimators against Monte Carlo on the 30-case accuracy grid "
                           "(a Markdown table)")
     validate.add_argument("--json", action="store_true", help="print one JSON object (forces in N)")
+
+    from . import sweep  # light: dask, pandas and bokeh are imported when a sweep runs
+
+    sweep.add_arguments(commands.add_parser(
+        "sweep",
+        help="parametric study on Dask: every combination estimated and simulated, resumable",
+        description=sweep.DESCRIPTION,
+        epilog=sweep.EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    ))
 
     dashboard = commands.add_parser(
         "dashboard",
@@ -283,7 +294,20 @@ def _dashboard(args) -> int:
     return 0
 
 
-_COMMANDS = {"cases": _cases, "estimate": _estimate, "simulate": _simulate, "validate": _validate, "dashboard": _dashboard}
+def _sweep(args) -> int:
+    from . import sweep
+
+    return sweep.run(args)
+
+
+_COMMANDS = {
+    "cases": _cases,
+    "estimate": _estimate,
+    "simulate": _simulate,
+    "validate": _validate,
+    "sweep": _sweep,
+    "dashboard": _dashboard,
+}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -960,26 +960,6 @@ def write_chart(table, paths: Sequence[str], path: str | os.PathLike, units: str
 # --- command line -----------------------------------------------------------------------------
 
 
-def _positive_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"must be a whole number, got {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be >= 1, got {value}")
-    return value
-
-
-def _non_negative_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"must be a whole number, got {text!r}") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must be >= 0, got {value}")
-    return value
-
-
 def add_arguments(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
     """Add the ``pounding sweep`` arguments to ``parser`` (the subcommand's
     parser; :data:`DESCRIPTION` and :data:`EPILOG` are its texts). Returns ``parser``."""
@@ -987,15 +967,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
     parser.add_argument("--vary", action="append", default=[], metavar="PATH=VALUES",
                         help="a key of the case file and its values, in the case's units: start:stop:count or a,b,c "
                         "(repeat for more keys; every combination is run)")
-    parser.add_argument("--records", type=_positive_int, default=100, help="Monte Carlo records per point (default 100)")
-    parser.add_argument("--seed", type=_non_negative_int, default=0, help="seed of the study (default 0)")
+    from .cli import whole_number  # the command line's own argument types
+
+    parser.add_argument("--records", type=whole_number(1), default=100, help="Monte Carlo records per point (default 100)")
+    parser.add_argument("--seed", type=whole_number(0), default=0, help="seed of the study (default 0)")
     parser.add_argument("-o", "--output", required=True, metavar="DIR",
                         help="folder of the results and of the finished chunks (rerun with it to resume)")
     parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
                         help="Dask scheduler address (tcp://host:8786); default: a local cluster on this machine's cores; "
                         f"'{SERIAL}': in this process, without Dask")
-    parser.add_argument("--workers", type=_positive_int, default=None, help="worker processes of the local cluster (default: one per core)")
-    parser.add_argument("--chunk-records", type=_positive_int, default=CHUNK_RECORDS,
+    parser.add_argument("--workers", type=whole_number(1), default=None, help="worker processes of the local cluster (default: one per core)")
+    parser.add_argument("--chunk-records", type=whole_number(1), default=CHUNK_RECORDS,
                         help=f"records per Dask task (default {CHUNK_RECORDS})")
     parser.add_argument("--format", choices=TABLE_FORMATS, default="csv", help="format of the table (default csv; parquet needs pyarrow)")
     parser.add_argument("--no-chart", action="store_true", help="do not write the design chart sweep.html")
