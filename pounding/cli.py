@@ -18,6 +18,7 @@ _EPILOG = """examples:
   pounding simulate section5-T2-0.4 --records 300 --seed 1
   pounding validate --records 300
   pounding sweep section5-T2-0.4 --vary contact.gap=0:5:11 --records 200 -o results/
+  pounding report section5-T2-0.4 -o report.html --records 300
   pounding simulate my_case.toml --records 50 --json
   pounding dashboard --port 5006
 """
@@ -113,6 +114,24 @@ def _parser() -> argparse.ArgumentParser:
                           help="instead of the paper's tables: both estimators against Monte Carlo on the 30-case accuracy grid "
                           "(a Markdown table)")
     validate.add_argument("--json", action="store_true", help="print one JSON object (forces in N)")
+
+    report = commands.add_parser(
+        "report",
+        help="write a static, self-contained HTML report of a case",
+        description="One HTML file (all JS/CSS inline, opens offline, interactive plots): the inputs with units, "
+        "both estimators with their chain of equations, the gap-aware results, spectra, hysteresis loops, "
+        "force against gap and, with --records, the Monte Carlo comparison. Written atomically.",
+        epilog="examples:\n  pounding report section5-T2-0.4 -o report.html\n"
+        "  pounding report case.toml -o case.html --records 300 --units kgf-cm-s",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    report.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
+    report.add_argument("-o", "--output", required=True, help="the HTML file to write")
+    report.add_argument("--records", type=_non_negative_int, default=0,
+                        help="Monte Carlo records to compare with (default 0: none)")
+    report.add_argument("--seed", type=_non_negative_int, default=1, help="seed of the Monte Carlo study (default 1)")
+    report.add_argument("--units", choices=("SI", "kgf-cm-s"), default="SI", help="units shown in the report (default SI)")
+    report.add_argument("--json", action="store_true", help="print one JSON object: the file written and the figures in it (SI)")
 
     from . import sweep  # light: dask, pandas and bokeh are imported when a sweep runs
 
@@ -294,6 +313,42 @@ def _dashboard(args) -> int:
     return 0
 
 
+def _report(args) -> int:
+    from pathlib import Path
+
+    from .case import load_case
+    from .errors import CaseError
+
+    case = load_case(args.case)
+    path = Path(args.output)
+    if not path.parent.is_dir():
+        raise CaseError("--output", f"the folder {str(path.parent)!r} does not exist")
+    monte_carlo = ()
+    if args.records:
+        from .simulation import simulate
+
+        bar = _progress_bar(args.records, sys.stderr.isatty())
+        try:
+            result = simulate(case, records=args.records, seed=args.seed, progress=(lambda done, total: bar.update(done - bar.n)) if bar else None)
+        finally:
+            if bar is not None:
+                bar.close()
+    from .report import MonteCarloPoint, compute_snapshot, write_report  # plotting libraries: only here
+
+    if args.records:
+        monte_carlo = (MonteCarloPoint.from_result(result),)
+    snapshot = compute_snapshot(case, monte_carlo=monte_carlo)
+    write_report(path, snapshot, units=args.units)
+    if args.json:
+        figures = snapshot.estimate.to_dict()
+        if monte_carlo:
+            figures["monte_carlo"] = dict(monte_carlo[0].__dict__)
+        print(json.dumps({"report": str(path), **figures}))
+    else:
+        print(f"wrote {path} ({path.stat().st_size / 1e6:.1f} MB)")
+    return 0
+
+
 def _sweep(args) -> int:
     from . import sweep
 
@@ -306,6 +361,7 @@ _COMMANDS = {
     "simulate": _simulate,
     "validate": _validate,
     "sweep": _sweep,
+    "report": _report,
     "dashboard": _dashboard,
 }
 
