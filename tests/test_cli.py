@@ -48,6 +48,12 @@ def test_simulate_table_has_units():
         (("simulate", "section5-T2-0.4", "--seed", "-1"), "--seed"),
         (("simulate", "section5-T2-0.4", "--tolerance", "0.5"), "tolerance"),
         (("explode",), "invalid choice"),
+        (("estimate", "section5-T2-0.4", "--target-probability", "1"), "target_probability"),
+        (("estimate", "nowhere.toml"), "neither a TOML file nor a preset"),
+        (("report", "section5-T2-0.4", "-o", "/no/such/folder/report.html"), "--output"),
+        (("report", "section5-T2-0.4"), "--output"),
+        (("sweep", "section5-T2-0.4", "--vary", "contact.gap=1:0", "-o", "/tmp/unused-sweep"), "contact.gap"),
+        (("validate", "--records", "0"), "--records"),
     ],
 )
 def test_bad_input_exits_2_with_one_line(args, words):
@@ -85,8 +91,37 @@ def test_command_line_imports_no_plotting_library():
     assert "HEAVY []" in out.stderr
 
 
+def test_report_is_written_and_described(tmp_path):
+    path = tmp_path / "report.html"
+    out = run("report", "section5-T2-0.8", "-o", str(path), "--json")
+    assert out.returncode == 0, out.stderr
+    data = json.loads(out.stdout)
+    assert data["report"] == str(path)
+    assert data["force_expected"] > 0
+    text = path.read_text()
+    assert "<html" in text.lower() and "section5-T2-0.8" in text
+    assert not list(tmp_path.glob(".*.tmp"))
+
+
+def test_killed_report_leaves_no_file(tmp_path):
+    """Killed while it works (here in its Monte Carlo), a report run leaves
+    neither the report nor a partial file behind."""
+    import signal
+    import time
+
+    path = tmp_path / "report.html"
+    process = subprocess.Popen([sys.executable, "-m", "pounding", "report", "section5-T2-0.4", "-o", str(path),
+                                "--records", "200000"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    time.sleep(6)
+    assert process.poll() is None, "the run ended before it could be killed"
+    process.send_signal(signal.SIGKILL)
+    process.wait(timeout=30)
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_help_has_examples():
-    for args in (("--help",), ("simulate", "--help"), ("cases", "--help"), ("dashboard", "--help")):
+    for args in (("--help",), ("simulate", "--help"), ("cases", "--help"), ("dashboard", "--help"), ("estimate", "--help"),
+                 ("validate", "--help"), ("report", "--help"), ("sweep", "--help")):
         out = run(*args)
         assert out.returncode == 0
         assert "example" in out.stdout
