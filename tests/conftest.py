@@ -27,3 +27,8 @@ def make_case(buildings, gap=0.01, stiffness=2e9, restitution=0.65, levels=(1, 1
 def paper_bouc_wen() -> BoucWen:
     """Section 5's storey law in SI: beta = 2 /cm, gamma = -1 /cm."""
     return BoucWen(alpha=0.05, A=1.0, beta=200.0, gamma=-100.0, n=1.0)
+
+
+# Browser fixtures (headless Debian Chromium, the dashboard served on a free port),
+# defined once here so the session-scoped browser is shared by every module.
+from tests.browser import browser, dashboard, dashboard_url  # noqa: E402,F401

@@ -13,7 +13,7 @@ from pounding import load_case
 from pounding.case import DEFAULT_PRESET
 from pounding.estimator import estimate
 from pounding.report import display
-from tests.browser import CANVAS_COUNT_JS, LOAD_TIMEOUT, UPDATE_TIMEOUT, browser, dashboard, dashboard_url, offline  # noqa: F401
+from tests.browser import CANVAS_COUNT_JS, LOAD_TIMEOUT, UPDATE_TIMEOUT
 
 from dashboard.model import PoundingModel
 

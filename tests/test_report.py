@@ -11,7 +11,7 @@ from pounding import load_case
 from pounding.case import DEFAULT_PRESET
 from pounding.estimator import estimate
 from pounding.report import compute_snapshot, display, write_report
-from tests.browser import CANVAS_COUNT_JS, LOAD_TIMEOUT, browser  # noqa: F401
+from tests.browser import CANVAS_COUNT_JS, LOAD_TIMEOUT
 
 
 @pytest.fixture(scope="module")

@@ -1,0 +1,112 @@
+"""Dashboard latency in a real browser: slider change -> new F_e on screen.
+
+Serves ``dashboard/app.py`` with ``panel serve`` on a free port, opens it in
+headless Debian Chromium (/usr/bin/chromium) and, presses an arrow key on
+the T2 slider (alternately right and left, so T2 stays near 0.4 s) and
+polls, every animation frame, until the recommended F_e shown differs from
+the value before; the time runs from the page's clock just before the key
+press to two animation frames after the new text. Reports the median of 10
+in one session, then with 5 sessions changing sliders at once.
+
+    python3 benchmarks/dashboard_latency.py
+"""
+
+from __future__ import annotations
+
+import re
+import statistics
+import subprocess
+import sys
+import threading
+from pathlib import Path
+
+from playwright.sync_api import sync_playwright
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+from tests.browser import CHROMIUM, CHROMIUM_ARGS  # noqa: E402
+
+def serve():
+    process = subprocess.Popen(
+        [sys.executable, "-m", "panel", "serve", str(ROOT / "dashboard" / "app.py"), "--port", "0"],
+        cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+    )
+    for line in process.stdout:
+        match = re.search(r"(http://localhost:\d+/app)", line)
+        if match:
+            threading.Thread(target=lambda: [None for _ in process.stdout], daemon=True).start()
+            return process, match.group(1)
+    raise RuntimeError("panel serve did not start")
+
+
+def open_session(browser, url):
+    page = browser.new_page(viewport={"width": 1500, "height": 1100})
+    page.route("**/*", lambda r: r.continue_() if r.request.url.startswith(("http://localhost", "ws://localhost")) else r.abort())
+    page.goto(url)
+    page.locator(".fe-recommended").wait_for(timeout=60_000)
+    handle = page.locator(".bk-input-group", has=page.get_by_text("period T2", exact=False)).locator(".noUi-handle").first
+    handle.focus()
+    return page, handle
+
+
+def measure(page, handle, n: int) -> list[float]:
+    times = []
+    for i in range(n):
+        key = "ArrowRight" if i % 2 == 0 else "ArrowLeft"
+        before = page.locator(".fe-recommended").inner_text()
+        handle.focus()
+        start_ms = page.evaluate("() => performance.now()")
+        page.keyboard.press(key)
+        page.wait_for_function(
+            """([before]) => { const find = (root) => { const el = root.querySelector('.fe-recommended'); if (el) return el;
+                for (const e of root.querySelectorAll('*')) { if (e.shadowRoot) { const f = find(e.shadowRoot); if (f) return f; } } return null; };
+                const el = find(document); return el && el.textContent.trim() !== before; }""",
+            arg=[before], polling="raf", timeout=30_000,
+        )
+        end_ms = page.evaluate("() => new Promise(r => requestAnimationFrame(() => requestAnimationFrame(() => r(performance.now()))))")
+        times.append(end_ms - start_ms)
+    return times
+
+
+def main() -> None:
+    if not CHROMIUM.exists():
+        sys.exit(f"needs {CHROMIUM} (apt-get install chromium)")
+    process, url = serve()
+    try:
+        with sync_playwright() as p:
+            browser = p.chromium.launch(executable_path=str(CHROMIUM), args=CHROMIUM_ARGS)
+            page, handle = open_session(browser, url)
+            measure(page, handle, 2)  # warm-up
+            single = measure(page, handle, 10)
+            print(f"one session: slider -> new F_e on screen, median of 10: {statistics.median(single):.0f} ms "
+                  f"(min {min(single):.0f}, max {max(single):.0f})")
+            page.close()
+            browser.close()
+        # 5 sessions at once, each in its own browser process and thread.
+        results: dict[int, list[float]] = {}
+
+        def session(k: int, ready: threading.Barrier):
+            with sync_playwright() as p:
+                b = p.chromium.launch(executable_path=str(CHROMIUM), args=CHROMIUM_ARGS)
+                pg, h = open_session(b, url)
+                measure(pg, h, 1)
+                ready.wait()
+                results[k] = measure(pg, h, 10)
+                b.close()
+
+        barrier = threading.Barrier(5)
+        threads = [threading.Thread(target=session, args=(k, barrier)) for k in range(5)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        every = [t for times in results.values() for t in times]
+        print(f"5 concurrent sessions, 10 changes each: median {statistics.median(every):.0f} ms, "
+              f"90th percentile {statistics.quantiles(every, n=10)[-1]:.0f} ms, max {max(every):.0f} ms")
+    finally:
+        process.terminate()
+        process.wait(timeout=10)
+
+
+if __name__ == "__main__":
+    main()
