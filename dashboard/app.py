@@ -30,12 +30,26 @@ pn.extension(notifications=False)
 TITLE = "pounding: expected extreme pounding force between adjacent buildings"
 
 
+REDRAW_DELAY_MS = 150
+"""The plots are redrawn this long after a change, so that the result card
+(the number the user is waiting for) reaches the browser and is painted
+before the larger plot data arrives; changes in between give one redraw."""
+
+
 def _session_schedule():
     """Run a function on this session's event loop (thread-safe)."""
     doc = pn.state.curdoc
     if doc is None or doc.session_context is None:
         return None
     return lambda fn: doc.add_next_tick_callback(fn)
+
+
+def _session_delay():
+    """Run a function on this session's event loop after ``REDRAW_DELAY_MS``."""
+    doc = pn.state.curdoc
+    if doc is None or doc.session_context is None:
+        return None
+    return lambda fn: doc.add_timeout_callback(fn, REDRAW_DELAY_MS)
 
 
 def _session_batch():
@@ -74,7 +88,7 @@ def _unit_label(model: PoundingModel, name: str) -> str:
 class Dashboard:
     """Widgets made from the model's parameters, and the output panes."""
 
-    def __init__(self, model: PoundingModel, schedule=None, batch=None):
+    def __init__(self, model: PoundingModel, schedule=None, batch=None, delay=None):
         self.model = model
         m = model
         self._inputs = {}
@@ -161,7 +175,7 @@ class Dashboard:
         # several quick changes give one redraw.
         self.figures = Figures()
         self.figures.fill(m.snapshot, m.units, tuple(m.mc_points))
-        self._schedule = schedule or (lambda fn: fn())
+        self._schedule = delay or schedule or (lambda fn: fn())
         self._batch = batch or contextlib.nullcontext
         self._redraw_pending = False
         m.param.watch(self._request_redraw, ["snapshot", "units", "mc_points"])
@@ -224,7 +238,7 @@ pn.theme.Fast._resources = {**pn.theme.Fast._resources, "font": {}}
 def create_app() -> pn.template.FastListTemplate:
     schedule, batch = _session_schedule(), _session_batch()
     model = PoundingModel(schedule=schedule, batch=batch)
-    view = Dashboard(model, schedule, batch)
+    view = Dashboard(model, schedule, batch, _session_delay())
     template = pn.template.FastListTemplate(title=TITLE, sidebar=view.sidebar, main=view.main, sidebar_width=360, theme_toggle=False,
         font_url="",  # no web font: the page needs no network
     )

@@ -413,21 +413,38 @@ class Figures:
             velocity = np.where(velocity < np.nanmax(velocity) * 1e-8, np.nan, velocity)  # its fall to 0 past the cutoff
         src["psd"].data = dict(omega=snapshot.omega, ground=snapshot.psd_ground / ls**2, velocity=velocity / vs**2)
         history = snapshot.history
+        shown = None if history is None else _plotted_steps(history)
         for b in (1, 2):
             if history is None:
                 src[f"hysteresis{b}"].data = dict(drift=[], force=[], equivalent=[])
                 src[f"impact{b}"].data = dict(drift=[], force=[])
                 continue
             column = history.floor(b, 1)
-            drift = history.drift[:, column] / ls
-            restoring = history.storey_force[:, column] / fs
-            src[f"hysteresis{b}"].data = dict(drift=drift, force=restoring, equivalent=snapshot.equivalent_force[b - 1][:, 0] / fs)
-            impact = history.contact_force > 0
+            drift = history.drift[shown, column] / ls
+            restoring = history.storey_force[shown, column] / fs
+            equivalent = snapshot.equivalent_force[b - 1][shown, 0] / fs
+            src[f"hysteresis{b}"].data = dict(drift=drift, force=restoring, equivalent=equivalent)
+            impact = history.contact_force[shown] > 0
             src[f"impact{b}"].data = dict(drift=drift[impact], force=restoring[impact])
         if history is None:
             src["contact"].data = dict(time=[], force=[])
         else:
-            src["contact"].data = dict(time=history.time, force=history.contact_force / fs)
+            src["contact"].data = dict(time=history.time[shown], force=history.contact_force[shown] / fs)
+
+
+PLOTTED_STEPS = 1500
+"""Integration steps drawn per curve outside the impacts: the kernel's steps
+crowd into the impacts, and the plots need no more to show the loops."""
+
+
+def _plotted_steps(history: TimeHistory) -> np.ndarray:
+    """Indices of the steps drawn: every step in contact (and its neighbours,
+    so each pounding spike keeps its shape), and an even selection of the rest."""
+    n = history.time.size
+    contact = np.flatnonzero(history.contact_force > 0)
+    around = np.concatenate([contact - 1, contact, contact + 1])
+    even = np.linspace(0, n - 1, min(n, PLOTTED_STEPS)).astype(np.int64)
+    return np.unique(np.clip(np.concatenate([around, even]), 0, n - 1))
 
 
 # --- the static report ---------------------------------------------------------
