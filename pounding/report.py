@@ -278,6 +278,8 @@ def result_html(snapshot: Snapshot, units: str = "SI", monte_carlo: MonteCarloPo
         f"DDC {d.length(e.separation_rules['ddc'])}).</p>"
         f'<p class="monte-carlo">Monte Carlo mean F<sub>max</sub>: {mc}</p>'
     )
+    if e.warnings:
+        summary += "".join(f'<p class="estimate-warning">&#9888; {html.escape(w)}</p>' for w in e.warnings)
     return (
         '<div class="pounding-result">'
         "<table><thead><tr><th></th><th>recommended (gap-aware)</th><th>paper (Eq. 12-30)</th></tr></thead><tbody>"
@@ -293,6 +295,7 @@ RESULT_CSS = """
 .pounding-result th, .pounding-result td { padding: 3px 10px; border-bottom: 1px solid #ddd; text-align: left; }
 .pounding-result tr.headline td { font-size: 20px; font-weight: bold; color: #0b4f8a; }
 .pounding-result p { font-size: 14px; margin: 6px 0; }
+.pounding-result p.estimate-warning { color: #8a4b00; }
 """
 
 
@@ -449,6 +452,28 @@ def _plotted_steps(history: TimeHistory) -> np.ndarray:
 
 # --- the static report ---------------------------------------------------------
 
+METHOD_NOTES = """
+<h2>Method</h2>
+<ul class="method-notes">
+<li><b>Buildings.</b> Shear buildings with a Bouc-Wen law in every storey (Rahimi &amp; Soltani 2016, Eq. 1-2, 36-39);
+damping c = 2 xi sqrt(k m) for one storey, stiffness-proportional on the first mode for more.</li>
+<li><b>Ground motion.</b> Gaussian records with the Kanai-Tajimi spectrum (Eq. 7), optionally modulated by the
+Shinozuka-Sato envelope (Eq. 8-9), by spectral representation; record i of a study is seeded on its own.</li>
+<li><b>Contact.</b> Jankowski's nonlinear viscoelastic law (Eq. 3-5) with the impact damping
+2 xi sqrt(beta sqrt(delta) m1 m2/(m1+m2)) (Eq. 4 as printed is dimensionally inconsistent).</li>
+<li><b>Monte Carlo ("exact").</b> Nonlinear time histories (Eq. 10-11) integrated with an error-controlled
+Dormand-Prince 5(4) scheme that locates every impact; halving its tolerance moves the mean F<sub>max</sub> by less than 0.1 %.</li>
+<li><b>Paper's estimate.</b> Statistical linearization (Eq. 19-21), variances with cross terms (Eq. 16-18, 25),
+Davenport's peak factor with the rate of Eq. 24 (Eq. 23), Michaelov's equivalent stationary process for modulated
+motion (Eq. 26-30), force by Eq. 13-14 with delta^1.5.</li>
+<li><b>Recommended estimate.</b> The same linearized pair; impacts counted as crossings of the gap (Rice), with
+returns after an impact (Zhuravlev's mirror argument) and clumps (Vanmarcke), the response built up from rest;
+each impact's peak force is the contact law's own, K(e) times the undamped Hertz peak. Within 10 % of Monte
+Carlo on 20 of 25 tested cases with the gap below sigma_X; not reliable when pounding is rare (a warning says so).
+Derivation and accuracy table: docs/estimator.md.</li>
+</ul>
+"""
+
 REPORT_NOTE = (
     "A snapshot of one state: the plots are interactive (zoom, pan, hover) but nothing is recomputed; "
     "change parameters in the dashboard (pounding dashboard) and export again."
@@ -524,6 +549,7 @@ def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None)
         row(figures.psd_ground, figures.psd_velocity, sizing_mode="stretch_width"),
         row(*figures.hysteresis, sizing_mode="stretch_width"),
         figures.contact,
+        Div(text=METHOD_NOTES, sizing_mode="stretch_width"),
         sizing_mode="stretch_width",
     )
     return _without_server_scripts(file_html(layout, resources=INLINE, title=title))

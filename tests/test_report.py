@@ -72,3 +72,12 @@ def test_report_loads_offline_with_its_plots(report, browser):
     assert page.locator(".fe-recommended").inner_text().endswith("kN")
     assert problems == []
     page.close()
+
+
+def test_report_cites_the_method_and_shows_the_estimators_warnings(report):
+    text = report.read_text()
+    for citation in ("Eq. 1-2", "Eq. 3-5", "Eq. 7", "Eq. 19-21", "Eq. 23", "Eq. 26-30", "docs/estimator.md"):
+        assert citation in text
+    # The default case's gap for 95 % no pounding lies in the rare-pounding regime: its warning is shown.
+    for warning in estimate(load_case(DEFAULT_PRESET)).warnings:
+        assert warning.split(":")[0][:40] in text
