@@ -151,6 +151,11 @@ class Estimate:
     paper: PaperEstimate
     response: ContactResponse = field(repr=False)
     warnings: tuple[str, ...] = ()
+    crossings: _Crossings | None = field(default=None, repr=False)
+
+    def gap_curve(self, gaps) -> GapCurve:
+        """This estimate at other gaps [m], reusing its response statistics."""
+        return _gap_curve(self.case, self.crossings, gaps, self.paper.force_expected)
 
     def to_dict(self) -> dict:
         """JSON-ready, SI units."""
@@ -482,6 +487,7 @@ def estimate(
         paper=paper_estimate(case, linearized, response, paper_variance),
         response=response,
         warnings=_warnings(case, linearized, response, required_gap),
+        crossings=crossings,
     )
 
 
@@ -498,16 +504,19 @@ class GapCurve:
     paper_force_expected: float | None
 
 
-def force_versus_gap(case: Case, gaps, linearized=None) -> GapCurve:
-    """The recommended estimate over many gaps; the linearization and the
-    response statistics are computed once."""
+def _gap_curve(case: Case, crossings: _Crossings, gaps, paper_force: float | None) -> GapCurve:
     gaps = np.asarray(gaps, dtype=float).ravel()
     if gaps.size == 0 or np.any(gaps < 0) or not np.all(np.isfinite(gaps)):
         raise CaseError("gaps", "must be finite numbers >= 0 m")
-    linearized = linearized or linearize_pair(case)
-    response = response_lyapunov(case, linearized)
-    crossings = _crossings(case, linearized)
     contact = case.contact
     impacts = crossings.intensity(gaps, np.zeros(1))[:, 0]
     force = impact_peak_force(contact, 1.0, case.reduced_mass) * _expected_powers_of_maximum(crossings, gaps, (_exponent(contact),))[0]
-    return GapCurve(gaps, force, -np.expm1(-impacts), impacts, paper_estimate(case, linearized, response).force_expected)
+    return GapCurve(gaps, force, -np.expm1(-impacts), impacts, paper_force)
+
+
+def force_versus_gap(case: Case, gaps, linearized=None) -> GapCurve:
+    """The recommended estimate over many gaps [m]; the linearization and the
+    response statistics are computed once (see also :meth:`Estimate.gap_curve`)."""
+    linearized = linearized or linearize_pair(case)
+    response = response_lyapunov(case, linearized)
+    return _gap_curve(case, _crossings(case, linearized), gaps, paper_estimate(case, linearized, response).force_expected)

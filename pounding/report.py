@@ -28,7 +28,7 @@ import numpy as np
 
 from .case import Case
 from .errors import SimulationError
-from .estimator import DEFAULT_TARGET_PROBABILITY, Estimate, GapCurve, estimate, force_versus_gap
+from .estimator import DEFAULT_TARGET_PROBABILITY, Estimate, GapCurve, estimate
 from .linearization import equivalent_storey_force, linearize_pair
 from .response import psd_relative_velocity
 from .simulation import SimulationResult, TimeHistory, simulate_record
@@ -205,7 +205,7 @@ def compute_snapshot(
     """
     linearized = linearize_pair(case)
     result = estimate(case, target_probability, linearized=linearized)
-    curve = force_versus_gap(case, gap_grid(case, result), linearized=linearized)
+    curve = result.gap_curve(gap_grid(case, result))
     omega = np.geomspace(0.3, case.excitation.cutoff_frequency, PSD_POINTS)
     psd_ground = np.asarray(case.excitation.spectrum.psd(omega), dtype=float)
     psd_velocity = psd_relative_velocity(case, linearized, omega)
