@@ -139,6 +139,8 @@ class Dashboard:
                 widget("xi_g", slider),
                 widget("duration", slider),
                 widget("envelope", pn.widgets.RadioButtonGroup),
+                widget("B1", number),
+                widget("B2", number),
                 title="Excitation (Kanai-Tajimi)", sizing_mode="stretch_width",
             ),
         ]

@@ -98,6 +98,8 @@ class PoundingModel(param.Parameterized):
     xi_g = param.Number(0.34, bounds=(0.05, 1.0), step=0.01, label="xi_g [-]", doc="Ground damping ratio.")
     duration = param.Number(20.0, bounds=(2.0, 60.0), step=1.0, label="duration [s]", doc="Record duration.")
     envelope = param.Selector(default="none", objects=["none", "shinozuka-sato"], label="envelope", doc="Stationary, or the Shinozuka-Sato envelope (Eq. 9).")
+    B1 = param.Number(0.085, bounds=(0.005, 2.0), step=0.005, label="envelope B1 [1/s]", doc="Shinozuka-Sato decay constant B1 (Eq. 9), below B2.")
+    B2 = param.Number(0.17, bounds=(0.01, 5.0), step=0.005, label="envelope B2 [1/s]", doc="Shinozuka-Sato decay constant B2 (Eq. 9), above B1.")
 
     records = param.Integer(40, bounds=(10, 500), step=10, label="records", doc="Records of the reduced-sample Monte Carlo study.")
     seed = param.Integer(DEFAULT_SEED, bounds=(0, None), label="seed", doc="Seed of the study.")
@@ -137,7 +139,9 @@ class PoundingModel(param.Parameterized):
                 storeys = [{"mass": get("mass"), "stiffness": get("stiffness"), "bouc_wen": dict(bouc_wen)} for _ in range(get("storeys"))]
             buildings.append({"damping_ratio": get("damping_ratio"), "storeys": storeys})
         excitation = {"G0": self.G0, "omega_g": self.omega_g, "xi_g": self.xi_g, "duration": self.duration, "envelope": self.envelope}
-        excitation |= {k: v for k, v in self._extra_excitation.items() if self.envelope == "shinozuka-sato" or k not in ("B1", "B2")}
+        excitation |= self._extra_excitation
+        if self.envelope == "shinozuka-sato":
+            excitation |= {"B1": self.B1, "B2": self.B2}
         return {
             "units": self.units,
             "name": self.preset,
@@ -187,6 +191,8 @@ class PoundingModel(param.Parameterized):
             "duration": case.excitation.duration,
             "envelope": "none" if case.excitation.stationary else "shinozuka-sato",
         }
+        if case.excitation.envelope is not None:
+            values |= {"B1": case.excitation.envelope.B1, "B2": case.excitation.envelope.B2}
         return values
 
     def _load_preset(self) -> None:
@@ -196,8 +202,6 @@ class PoundingModel(param.Parameterized):
         extra = {"time_step": excitation.time_step, "cutoff_frequency": excitation.cutoff_frequency}
         if isinstance(excitation.spectrum, CloughPenzien):
             extra |= {"spectrum": "clough-penzien", "omega_f": excitation.spectrum.omega_f, "xi_f": excitation.spectrum.xi_f}
-        envelope = excitation.envelope
-        extra |= {"B1": envelope.B1, "B2": envelope.B2} if envelope is not None else {"B1": 0.085, "B2": 0.17}
         self._extra_excitation = extra
         self._syncing = True
         try:
@@ -261,7 +265,7 @@ class PoundingModel(param.Parameterized):
     @param.depends(
         *[f"{name}_{b}" for b in (1, 2) for name in ("storeys", "period", "mass", "stiffness", "damping_ratio", "alpha", "A", "beta", "gamma", "n")],
         "level_1", "level_2", "gap", "contact_stiffness", "restitution", "contact_model",
-        "G0", "omega_g", "xi_g", "duration", "envelope", "seed",
+        "G0", "omega_g", "xi_g", "duration", "envelope", "B1", "B2", "seed",
         watch=True,
     )
     def _on_input(self):

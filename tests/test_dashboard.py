@@ -57,6 +57,18 @@ def test_model_names_the_bad_input_and_drops_the_result(name, value, field):
     assert model.error == "" and model.snapshot is not None
 
 
+def test_model_envelope_constants_drive_the_case_and_are_checked():
+    model = PoundingModel()
+    model.preset = "section5-T2-0.4-nonstationary"
+    assert (model.B1, model.B2) == (0.085, 0.17)
+    model.B1 = 0.05
+    case = model.snapshot.case
+    assert case.excitation.envelope.B1 == 0.05
+    assert model.snapshot.estimate.force_expected == pytest.approx(estimate(case).force_expected, rel=1e-12)
+    model.B1 = 0.3  # above B2: invalid
+    assert model.snapshot is None and "excitation.B2" in model.error
+
+
 def test_model_unit_switch_keeps_the_case():
     model = PoundingModel()
     before = model.snapshot.case
