@@ -30,7 +30,7 @@ from pounding.report import DEFAULT_SEED, MonteCarloPoint, compute_snapshot
 from pounding.simulation import Cancelled
 from pounding.units import UNIT_SYSTEMS, unit_system
 
-__all__ = ["PoundingModel", "INPUTS", "DIMENSIONS"]
+__all__ = ["PoundingModel", "DIMENSIONS"]
 
 _EXECUTOR = ThreadPoolExecutor(max_workers=2, thread_name_prefix="pounding-mc")
 """Shared by all sessions: at most two studies at a time (each uses every core)."""
@@ -41,7 +41,7 @@ MAX_STOREYS = 10
 def _building_params(number: int, period: float) -> dict:
     b = f"building {number}"
     return {
-        f"storeys_{number}": param.Integer(1, bounds=(1, MAX_STOREYS), label=f"storeys", doc=f"Number of storeys of {b}; all alike."),
+        f"storeys_{number}": param.Integer(1, bounds=(1, MAX_STOREYS), label="storeys", doc=f"Number of storeys of {b}; all alike."),
         f"period_{number}": param.Number(
             period, bounds=(0.05, 5.0), step=0.05, label="period T [s]",
             doc=f"Initial period of {b} [s] (one storey: with the mass it fixes the stiffness; more storeys: the fundamental period, shown).",
@@ -325,7 +325,9 @@ class PoundingModel(param.Parameterized):
             except Cancelled:
                 self._schedule(lambda: self._finished(cancel, None, None, key))
             except Exception as error:  # shown in the page, never a traceback
-                self._schedule(lambda: self._finished(cancel, None, _message(error), key))
+                # The except clause unbinds `error` when it ends: take the message now.
+                message = _message(error)
+                self._schedule(lambda: self._finished(cancel, None, message, key))
             else:
                 self._schedule(lambda: self._finished(cancel, result, None, key))
 

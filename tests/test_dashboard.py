@@ -93,6 +93,27 @@ def test_model_monte_carlo_runs_and_a_change_makes_it_stale():
     assert model.monte_carlo_for_current_gap() is None and model.mc_points == []
 
 
+def test_model_reports_a_failed_study(monkeypatch):
+    import dashboard.model as module
+    from pounding import SimulationError
+
+    def failing(*_args, **_kwargs):
+        raise SimulationError("record 3 (seed 1) failed at t = 2.0000 s: a floor displacement exceeded the runaway limit")
+
+    monkeypatch.setattr(module, "simulate", failing)
+    pending = []  # deferred, as a served session's event loop runs them: after the worker's frame is gone
+    model = PoundingModel(schedule=pending.append)
+    model.run_monte_carlo()
+    deadline = time.monotonic() + 30
+    while model.mc_running and time.monotonic() < deadline:
+        while pending:
+            pending.pop(0)()
+        time.sleep(0.02)
+    assert not model.mc_running
+    assert "record 3" in model.mc_status
+    assert model.monte_carlo_for_current_gap() is None
+
+
 def test_model_multistorey_preset_and_contact_level():
     model = PoundingModel(preset="section6-T2-0.4")
     assert model.storeys_1 == 2 and model.error == ""
