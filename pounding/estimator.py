@@ -207,7 +207,6 @@ def paper_estimate(case: Case, linearized, response: ContactResponse, variance_m
         How sigma_V(t) is found for a modulated motion: ``"eq28"``, the paper's
         A(t)^2 sigma_inf^2, or ``"exact"``, the time-varying covariance.
     """
-    sigma_x = response.sigma_relative_displacement
     sigma_v = response.sigma_relative_velocity
     rate = response.zero_crossing_rate  # Eq. 24 (NOTES.md 11: the displacement's rate)
     excitation = case.excitation
