@@ -12,7 +12,7 @@ import pytest
 from pounding import load_case
 from pounding.case import DEFAULT_PRESET
 from pounding.estimator import estimate
-from pounding.report import display
+from pounding.report import compute_snapshot, display
 from tests.browser import CANVAS_COUNT_JS, LOAD_TIMEOUT, UPDATE_TIMEOUT
 
 from dashboard.model import PoundingModel
@@ -146,7 +146,34 @@ def test_page_loads_without_errors_and_shows_the_default_case(dashboard):
     expected = estimate(load_case(DEFAULT_PRESET))
     assert dashboard.locator(".fe-recommended").inner_text() == _shown_force(expected.force_expected)
     assert dashboard.locator(".fe-paper").inner_text() == _shown_force(expected.paper.force_expected)
-    dashboard.wait_for_function(f"() => ({CANVAS_COUNT_JS})() >= 6", timeout=LOAD_TIMEOUT)
+    # F_e against the gap and the open tab's two spectra (two canvases a plot).
+    dashboard.wait_for_function(f"() => ({CANVAS_COUNT_JS})() === 6", timeout=LOAD_TIMEOUT)
+    assert dashboard.errors == []
+
+
+# The largest value of ``column`` in the page's Bokeh data sources that have a ``key`` column.
+SOURCE_MAX_JS = """([key, column]) => { let best = null; for (const doc of window.Bokeh.documents) { for (const m of doc.all_models) {
+  const d = m.data; const get = (name) => d == null ? undefined : (d instanceof Map ? d.get(name) : d[name]);
+  if (get(key) != null && get(column) != null) { for (const v of get(column)) { if (best === null || v > best) best = v; } } } }
+  return best; }"""
+
+
+@pytest.mark.browser
+def test_plot_tabs_draw_their_plots_when_opened(dashboard):
+    """Only the open tab is in the page: opening another one draws its plots,
+    with the data of the current inputs (changed while the tab was closed)."""
+    dashboard.wait_for_function(f"() => ({CANVAS_COUNT_JS})() === 6", timeout=LOAD_TIMEOUT)
+    _handle(dashboard, "period T2").focus()
+    dashboard.keyboard.press("ArrowRight")  # 0.40 -> 0.45 s
+    changed = compute_snapshot(_with_period(load_case(DEFAULT_PRESET), 2, 0.45))
+    _wait_text(dashboard, ".fe-recommended", _shown_force(changed.estimate.force_expected))
+    for tab, canvases in [("Pounding force history", 4), ("Hysteresis loops", 6), ("Spectra", 6)]:
+        dashboard.locator(".bk-tab", has_text=tab).click()
+        dashboard.wait_for_function(f"() => ({CANVAS_COUNT_JS})() === {canvases}", timeout=UPDATE_TIMEOUT)
+        if tab == "Pounding force history":  # the record of T2 = 0.45 s, not of the first page
+            peak = changed.history.contact_force.max() / 1e3  # [kN], as plotted
+            dashboard.wait_for_function(f"() => ({SOURCE_MAX_JS})(['time', 'force']) !== null", timeout=UPDATE_TIMEOUT)
+            assert dashboard.evaluate(f"({SOURCE_MAX_JS})(['time', 'force'])") == pytest.approx(peak, rel=1e-9)
     assert dashboard.errors == []
 
 
@@ -189,7 +216,7 @@ def test_export_downloads_a_report_that_loads_offline(dashboard, browser, tmp_pa
     page.on("console", lambda m: log.append(m.text) if m.type == "error" else None)
     page.route("**/*", lambda r: r.continue_() if r.request.url.startswith("file:") else (log.append(r.request.url), r.abort()))
     page.goto(path.as_uri())
-    page.wait_for_function(f"() => ({CANVAS_COUNT_JS})() >= 6", timeout=LOAD_TIMEOUT)
+    page.wait_for_function(f"() => ({CANVAS_COUNT_JS})() >= 12", timeout=LOAD_TIMEOUT)  # six plots, two canvases each
     assert page.locator(".fe-recommended").inner_text() == shown
     assert log == []
     page.close()

@@ -68,7 +68,7 @@ def test_report_loads_offline_with_its_plots(report, browser):
     page.on("pageerror", lambda e: problems.append(str(e)))
     page.route("**/*", lambda r: r.continue_() if r.request.url.startswith("file:") else (problems.append(r.request.url), r.abort()))
     page.goto(report.as_uri())
-    page.wait_for_function(f"() => ({CANVAS_COUNT_JS})() >= 6", timeout=LOAD_TIMEOUT)
+    page.wait_for_function(f"() => ({CANVAS_COUNT_JS})() >= 12", timeout=LOAD_TIMEOUT)  # six plots, two canvases each
     assert page.locator(".fe-recommended").inner_text().endswith("kN")
     assert problems == []
     page.close()
