@@ -40,7 +40,7 @@ from numba import njit
 from .case import Case
 from .contact import Contact, impact_peak_force, peak_force_ratio, undamped_peak_force
 from .errors import CaseError
-from .linearization import linearize_pair
+from .linearization import StateSpace, linearize_pair, pair_state_space
 from .peaks import davenport_peak_factor, envelope_variance, equivalent_stationary
 from .response import ContactResponse, bandwidth_relative_displacement, contact_covariance_history, response_lyapunov
 
@@ -194,7 +194,7 @@ class Estimate:
 # --- the paper's method ------------------------------------------------------
 
 
-def paper_estimate(case: Case, linearized, response: ContactResponse, variance_method: str = "eq28") -> PaperEstimate:
+def paper_estimate(case: Case, linearized, response: ContactResponse, variance_method: str = "eq28", model: StateSpace | None = None) -> PaperEstimate:
     """The published estimator, Eq. 12-30.
 
     Parameters
@@ -206,6 +206,8 @@ def paper_estimate(case: Case, linearized, response: ContactResponse, variance_m
     variance_method : str
         How sigma_V(t) is found for a modulated motion: ``"eq28"``, the paper's
         A(t)^2 sigma_inf^2, or ``"exact"``, the time-varying covariance.
+    model : StateSpace, optional
+        The pair's :func:`~pounding.linearization.pair_state_space`, if built already.
     """
     sigma_v = response.sigma_relative_velocity
     rate = response.zero_crossing_rate  # Eq. 24 (NOTES.md 11: the displacement's rate)
@@ -218,7 +220,7 @@ def paper_estimate(case: Case, linearized, response: ContactResponse, variance_m
         if variance_method == "eq28":
             variance = envelope_variance(excitation.envelope, times, sigma_v**2)
         elif variance_method == "exact":
-            history = contact_covariance_history(case, linearized, times)
+            history = contact_covariance_history(case, linearized, times, model=model)
             variance = history[:, 2, 2] + history[:, 3, 3] - 2 * history[:, 2, 3]
         else:
             raise CaseError("variance_method", f"must be one of {', '.join(PAPER_VARIANCE_METHODS)}, got {variance_method!r}")
@@ -325,7 +327,7 @@ _STATIONARY_STEP = 0.25  # [s] time grid of the build-up from rest (it takes sec
 _MODULATED_STEP = 0.25  # [s] time grid under an envelope (which varies over seconds)
 
 
-def _crossings(case: Case, linearized) -> _Crossings:
+def _crossings(case: Case, linearized, model: StateSpace) -> _Crossings:
     """sigma_X(t), sigma_V(t) from rest: the ground motion switched on at t = 0
     on buildings at rest (stationary case), or modulated by the envelope."""
     excitation = case.excitation
@@ -334,7 +336,7 @@ def _crossings(case: Case, linearized) -> _Crossings:
     if times[-1] < excitation.duration - 1e-9:
         times = np.append(times, excitation.duration)
     modulation = "ground" if excitation.stationary else "bedrock"
-    history = contact_covariance_history(case, linearized, times, modulation=modulation)
+    history = contact_covariance_history(case, linearized, times, modulation=modulation, model=model)
     variance_x = history[:, 0, 0] + history[:, 1, 1] - 2 * history[:, 0, 1]
     variance_v = history[:, 2, 2] + history[:, 3, 3] - 2 * history[:, 2, 3]
     weights = np.concatenate([[0.5 * (times[1] - times[0])], 0.5 * (times[2:] - times[:-2]), [0.5 * (times[-1] - times[-2])]])
@@ -472,8 +474,9 @@ def estimate(
     """
     _check_probability(target_probability)
     linearized = linearized or linearize_pair(case)
-    response = response_lyapunov(case, linearized)
-    crossings = _crossings(case, linearized)
+    model = pair_state_space(case, linearized)
+    response = response_lyapunov(case, linearized, model)
+    crossings = _crossings(case, linearized, model)
     contact = case.contact
     gap = np.array([contact.gap])
     unit_peak = impact_peak_force(contact, 1.0, case.reduced_mass)
@@ -493,7 +496,7 @@ def estimate(
         upcrossing_rate=response.upcrossing_rate,
         peak_force_ratio=peak_force_ratio(contact.model, contact.restitution),
         separation_rules=_separation_rules(case, response),
-        paper=paper_estimate(case, linearized, response, paper_variance),
+        paper=paper_estimate(case, linearized, response, paper_variance, model),
         response=response,
         warnings=_warnings(case, linearized, response, required_gap),
         crossings=crossings,
@@ -528,5 +531,6 @@ def force_versus_gap(case: Case, gaps, linearized=None) -> GapCurve:
     """The recommended estimate over many gaps [m]; the linearization and the
     response statistics are computed once (see also :meth:`Estimate.gap_curve`)."""
     linearized = linearized or linearize_pair(case)
-    response = response_lyapunov(case, linearized)
-    return _gap_curve(case, _crossings(case, linearized), gaps, paper_estimate(case, linearized, response).force_expected)
+    model = pair_state_space(case, linearized)
+    response = response_lyapunov(case, linearized, model)
+    return _gap_curve(case, _crossings(case, linearized, model), gaps, paper_estimate(case, linearized, response, model=model).force_expected)

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import numpy as np
 from numba import njit
@@ -332,8 +332,15 @@ class StateSpace:
         return _drift_operator(self.velocity[building])
 
     def covariance(self) -> np.ndarray:
-        """Stationary state covariance P: A P + P A^T + 2 pi G0 b b^T = 0."""
-        return lyapunov_covariance(self.matrix, self.noise_covariance)
+        """Stationary state covariance P: A P + P A^T + 2 pi G0 b b^T = 0
+        (solved once per model; read-only)."""
+        return self._stationary_covariance
+
+    @cached_property
+    def _stationary_covariance(self) -> np.ndarray:
+        covariance = lyapunov_covariance(self.matrix, self.noise_covariance)
+        covariance.setflags(write=False)
+        return covariance
 
 
 def _drift_operator(floor_rows: np.ndarray) -> np.ndarray:

@@ -240,14 +240,13 @@ def time_varying_covariance(model: StateSpace, envelope, times, modulation: str 
     if envelope is None and modulation == "ground":
         return _switched_on(model, times)
     if modulation == "bedrock":
-        return _bedrock(A, Q, times, values**2)
+        return _bedrock(A, model.covariance(), times, values**2)
     if modulation == "ground":
         return _ground(model, envelope, times, rtol)
     raise ValueError(f"modulation must be 'bedrock' or 'ground', got {modulation!r}")
 
 
-def _bedrock(A, Q, times, forcing):
-    stationary = lyapunov_covariance(A, Q)
+def _bedrock(A, stationary, times, forcing):
     # A R + R A^T = P_s: lyapunov_covariance solves A X + X A^T + Q' = 0.
     ramp = lyapunov_covariance(A, -stationary)
     out = np.zeros((times.size,) + A.shape)
@@ -271,8 +270,7 @@ def _switched_on(model: StateSpace, times):
     (the filter already stationary): a time-invariant system, so
     P(t) = P_s + exp(A t) (P_0 - P_s) exp(A^T t), stepped with one propagator
     per distinct step."""
-    A, Q = model.matrix, model.noise_covariance
-    stationary = lyapunov_covariance(A, Q)
+    A, stationary = model.matrix, model.covariance()
     f = model.filter_states
     deviation = -stationary.copy()
     deviation[f, f] = 0.0  # the filter starts in its stationary state
@@ -297,7 +295,7 @@ def _ground(model: StateSpace, envelope, times, rtol):
     f = model.filter_states
     # The filter is stationary from before the onset; the buildings are at rest.
     initial[f, f] = lyapunov_covariance(model.matrix[f, f], Q[f, f])
-    scale = np.sqrt(np.abs(np.diag(lyapunov_covariance(model.matrix, Q))))
+    scale = np.sqrt(np.abs(np.diag(model.covariance())))
     atol = rtol * 1e-3 * np.outer(scale, scale).ravel()
 
     def rhs(t, p):

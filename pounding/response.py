@@ -173,7 +173,7 @@ def _linearized(case, linearized):
     return linearize_pair(case) if linearized is None else tuple(linearized)
 
 
-def response_lyapunov(case, linearized=None) -> ContactResponse:
+def response_lyapunov(case, linearized=None, model: StateSpace | None = None) -> ContactResponse:
     """Contact-floor response by the Lyapunov equation of the joint model.
 
     The pair and the ground filter form x' = A x + b w with w white noise of
@@ -186,9 +186,11 @@ def response_lyapunov(case, linearized=None) -> ContactResponse:
         A non-stationary case is treated by its stationary spectrum (sigma_inf).
     linearized : tuple of two LinearizedBuilding, optional
         From :func:`~pounding.linearization.linearize_pair`; computed when omitted.
+    model : StateSpace, optional
+        The pair's :func:`~pounding.linearization.pair_state_space`, if built already.
     """
-    linearized = _linearized(case, linearized)
-    model = pair_state_space(case, linearized)
+    if model is None:
+        model = pair_state_space(case, _linearized(case, linearized))
     outputs = contact_output_matrix(case, model)
     return ContactResponse(case.contact.levels, outputs @ model.covariance() @ outputs.T, "lyapunov")
 
@@ -348,7 +350,7 @@ def floor_statistics(case, linearized=None) -> FloorStatistics:
     )
 
 
-def contact_covariance_history(case, linearized=None, times=None, modulation: str = "bedrock") -> np.ndarray:
+def contact_covariance_history(case, linearized=None, times=None, modulation: str = "bedrock", model: StateSpace | None = None) -> np.ndarray:
     """Time-varying covariance of :data:`OUTPUTS` under the case's envelope,
     from rest, by :func:`pounding.peaks.time_varying_covariance`.
 
@@ -366,6 +368,8 @@ def contact_covariance_history(case, linearized=None, times=None, modulation: st
     modulation : str
         ``"bedrock"`` (modulated white noise, fast) or ``"ground"`` (Eq. 8, as
         the records are generated); see :func:`~pounding.peaks.time_varying_covariance`.
+    model : StateSpace, optional
+        The pair's :func:`~pounding.linearization.pair_state_space`, if built already.
 
     Returns
     -------
@@ -373,10 +377,10 @@ def contact_covariance_history(case, linearized=None, times=None, modulation: st
     """
     from .peaks import time_varying_covariance
 
-    linearized = _linearized(case, linearized)
     if times is None:
         times = np.arange(0.0, case.excitation.duration + 1e-9, 0.05)
-    model = pair_state_space(case, linearized)
+    if model is None:
+        model = pair_state_space(case, _linearized(case, linearized))
     outputs = contact_output_matrix(case, model)
     history = time_varying_covariance(model, case.excitation.envelope, times, modulation=modulation)
     return np.einsum("ij,tjk,lk->til", outputs, history, outputs)
