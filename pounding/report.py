@@ -364,7 +364,7 @@ class Figures:
 
         self.hysteresis = []
         for b in (1, 2):
-            h = figure(title=f"Building {b}, storey 1: restoring force against drift (one record)", height=320, **common)
+            h = figure(title=f"Building {b}, storey 1, one record", height=320, **common)
             h.line("drift", "equivalent", source=src[f"hysteresis{b}"], color="#ff7f0e", line_dash="dashed", alpha=0.8,
                    legend_label="equivalent linear (Eq. 19)")
             h.line("drift", "force", source=src[f"hysteresis{b}"], color="#1f77b4", legend_label="Bouc-Wen")
