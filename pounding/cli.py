@@ -229,6 +229,7 @@ def _estimate(args) -> int:
     print(f"  pounding probability      {100 * result.pounding_probability:.1f} %")
     print(f"  gap for {100 * result.target_probability:g} % no pounding  {100 * result.required_gap:.2f} cm"
           f"   (SRSS {100 * rules['srss']:.2f} cm, ABS {100 * rules['abs']:.2f} cm, DDC {100 * rules['ddc']:.2f} cm)")
+    print(f"  accuracy                  {result.measured_accuracy}")
     print("paper (Rahimi & Soltani 2016, Eq. 12-30)")
     if paper.force_expected is None:
         print("  expected extreme force    n/a (Eq. 13-14 hold for the Hertz-type laws only)")

@@ -278,6 +278,7 @@ def result_html(snapshot: Snapshot, units: str = "SI", monte_carlo: MonteCarloPo
         f"DDC {d.length(e.separation_rules['ddc'])}).</p>"
         f'<p class="monte-carlo">Monte Carlo mean F<sub>max</sub>: {mc}</p>'
     )
+    summary += f'<p class="measured-accuracy">Recommended F<sub>e</sub>: {html.escape(e.measured_accuracy)} (docs/estimator.md).</p>'
     if e.warnings:
         summary += "".join(f'<p class="estimate-warning">&#9888; {html.escape(w)}</p>' for w in e.warnings)
     return (
@@ -296,6 +297,7 @@ RESULT_CSS = """
 .pounding-result tr.headline td { font-size: 20px; font-weight: bold; color: #0b4f8a; }
 .pounding-result p { font-size: 14px; margin: 6px 0; }
 .pounding-result p.estimate-warning { color: #8a4b00; }
+.pounding-result p.measured-accuracy { color: #555; font-size: 0.9em; }
 """
 
 

@@ -80,6 +80,20 @@ def test_rare_pounding_of_yielding_buildings_is_flagged():
     result = estimate(case)
     assert result.sigma_relative_displacement < case.contact.gap
     assert any("gap exceeds sigma_X" in warning and "pounding simulate" in warning for warning in result.warnings)
+    assert "rare pounding" in result.measured_accuracy and "yielding" in result.measured_accuracy
+
+
+def test_the_measured_accuracy_stated_is_that_of_the_regime():
+    """Frequent pounding (gap below sigma_X): the grid's range; above sigma_X:
+    the rare-pounding range of an elastic or a yielding pair."""
+    frequent = estimate(load_case("section5-T2-0.4"))
+    assert "-14 % to +14 %" in frequent.measured_accuracy
+    assert frequent.sigma_relative_displacement > frequent.case.contact.gap
+    elastic = _vary(load_case("section5-T2-0.4"), elastic=True)
+    sigma = estimate(elastic).sigma_relative_displacement
+    rare = estimate(dataclasses.replace(elastic, contact=dataclasses.replace(elastic.contact, gap=2 * sigma)))
+    assert "rare pounding" in rare.measured_accuracy and "elastic" in rare.measured_accuracy
+    assert rare.to_dict()["measured_accuracy"] == rare.measured_accuracy
 
 
 def test_impacts_expected_tracks_the_simulated_count_when_pounding_is_frequent():
