@@ -36,19 +36,15 @@ _EXPORTS = {
     "BoucWen": "structures",
     "Building": "structures",
     "Storey": "structures",
+    "sweep": "sweeps",
 }
 
-_SUBMODULES = ("sweep",)
-
-__all__ = sorted([*_EXPORTS, *_SUBMODULES])
+__all__ = sorted(_EXPORTS)
 
 
 def __getattr__(name: str):
     if name in _EXPORTS:
         value = getattr(import_module(f".{_EXPORTS[name]}", __name__), name)
-    elif name in _SUBMODULES:
-        # pounding.sweep is the (callable) module: pounding.sweep(...) runs a sweep.
-        value = import_module(f".{name}", __name__)
     else:
         raise AttributeError(f"module 'pounding' has no attribute {name!r}")
     globals()[name] = value

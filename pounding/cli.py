@@ -133,13 +133,13 @@ def _parser() -> argparse.ArgumentParser:
     report.add_argument("--units", choices=("SI", "kgf-cm-s"), default="SI", help="units shown in the report (default SI)")
     report.add_argument("--json", action="store_true", help="print one JSON object: the file written and the figures in it (SI)")
 
-    from . import sweep  # light: dask, pandas and bokeh are imported when a sweep runs
+    from . import sweeps  # light: dask, pandas and bokeh are imported when a sweep runs
 
-    sweep.add_arguments(commands.add_parser(
+    sweeps.add_arguments(commands.add_parser(
         "sweep",
         help="parametric study on Dask: every combination estimated and simulated, resumable",
-        description=sweep.DESCRIPTION,
-        epilog=sweep.EPILOG,
+        description=sweeps.DESCRIPTION,
+        epilog=sweeps.EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     ))
 
@@ -351,9 +351,9 @@ def _report(args) -> int:
 
 
 def _sweep(args) -> int:
-    from . import sweep
+    from . import sweeps
 
-    return sweep.run(args)
+    return sweeps.run(args)
 
 
 _COMMANDS = {

@@ -3,6 +3,7 @@
 a killed client, bad --vary specs."""
 
 import argparse
+import importlib
 import json
 import math
 import signal
@@ -22,7 +23,7 @@ from pounding.case import case_from_dict
 from pounding.estimator import estimate
 from pounding.presets import preset_text
 from pounding.simulation import Settings, simulate
-from pounding.sweep import SweepInterrupted, add_arguments, parse_values, parse_vary, run, sweep
+from pounding.sweeps import SweepInterrupted, add_arguments, parse_values, parse_vary, run, sweep
 
 ROOT = Path(__file__).resolve().parents[1]
 VARY = {"contact.gap": "0.5:1.5:3", "buildings.2.storeys.1.period": [0.4, 0.6]}  # 6 points, kgf-cm-s
@@ -162,7 +163,7 @@ def test_a_cluster_given_by_its_scheduler_address(tmp_path, serial_table):
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
             distributed.Client(cluster) as client:
         table = run_sweep(tmp_path / "address", scheduler=cluster.scheduler_address, chunk_records=4)
-        assert list(client.run(lambda: __import__("pounding.sweep").sweep._WARM).values()) == [True, True]  # both warmed
+        assert list(client.run(lambda: importlib.import_module("pounding.sweeps.work")._WARM).values()) == [True, True]  # both warmed
     pd.testing.assert_frame_equal(table, serial_table, check_exact=True)
 
 
@@ -300,12 +301,12 @@ def test_the_module_is_light_and_the_chart_only_imported_when_asked(tmp_path):
     case = write_case(tmp_path)
     code = textwrap.dedent(f"""
         import sys, argparse
-        import pounding.sweep
+        import pounding.sweeps
         heavy = [name for name in ("dask", "distributed", "pandas", "bokeh") if name in sys.modules]
         assert not heavy, heavy
-        parser = pounding.sweep.add_arguments(argparse.ArgumentParser())
-        pounding.sweep.run(parser.parse_args([{str(case)!r}, "--records", "2", "-o", {str(tmp_path / "out")!r},
-                                              "--scheduler", "serial", "--no-chart"]))
+        parser = pounding.sweeps.add_arguments(argparse.ArgumentParser())
+        pounding.sweeps.run(parser.parse_args([{str(case)!r}, "--records", "2", "-o", {str(tmp_path / "out")!r},
+                                               "--scheduler", "serial", "--no-chart"]))
         assert "bokeh" not in sys.modules
         import pounding
         assert callable(pounding.sweep)

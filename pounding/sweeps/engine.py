@@ -1,0 +1,435 @@
+"""The sweep itself: the tasks, the Dask client, running and resuming, the
+chunks' totals, the Monte Carlo summary and the table."""
+
+from __future__ import annotations
+
+import itertools
+import math
+import os
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+from pathlib import Path
+
+from ..errors import CaseError
+from .chart import write_chart
+from .points import _case_data, _Point, _points
+from .spec import _normalized_vary
+from .store import _Store, _write_atomic, _write_json
+from .work import DEFAULT_TOLERANCE, _warm, chunk_sums, point_estimate
+
+CHUNK_RECORDS = 100
+"""Default records per chunk: about 0.4 s of work for 20 s records of two
+SDOF buildings, against a few milliseconds of overhead per chunk
+(``benchmarks/sweep.py``)."""
+
+TABLE_FORMATS = ("csv", "parquet")
+SERIAL = "serial"
+"""``scheduler=SERIAL`` runs every chunk in this process, without Dask."""
+
+
+class SweepInterrupted(RuntimeError):
+    """A sweep stopped before its end (``max_chunks`` reached); the chunks
+    finished so far are saved and a rerun resumes from them.
+
+    Attributes
+    ----------
+    chunks_computed : int
+        Chunks computed (and saved) by the interrupted call.
+    chunks_missing : int
+        Chunks still to compute.
+    """
+
+    def __init__(self, message: str, chunks_computed: int, chunks_missing: int):
+        super().__init__(message)
+        self.chunks_computed = chunks_computed
+        self.chunks_missing = chunks_missing
+
+
+@dataclass(frozen=True)
+class _Task:
+    point: _Point
+    first: int | None = None  # None: the closed-form estimate
+    count: int = 0
+
+    @property
+    def is_chunk(self) -> bool:
+        return self.first is not None
+
+
+def _chunks(records: int, chunk_records: int) -> list[tuple[int, int]]:
+    return [(first, min(chunk_records, records - first)) for first in range(0, records, chunk_records)]
+
+
+def _check_whole(name: str, value, minimum: int) -> None:
+    if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+        raise CaseError(name, f"must be a whole number >= {minimum}, got {value!r}")
+
+
+class _Client:
+    """A Dask client for the sweep: the given one, one connected to
+    ``scheduler``, or a local cluster of processes; or none (serial)."""
+
+    def __init__(self, scheduler, workers: int | None):
+        self.client = self.cluster = None
+        self.owned = True
+        if scheduler == SERIAL:
+            return
+        from distributed import Client
+
+        if isinstance(scheduler, Client):
+            self.client, self.owned = scheduler, False
+        elif scheduler is None:
+            import logging
+
+            from distributed import LocalCluster
+
+            self.cluster = LocalCluster(
+                n_workers=workers or os.cpu_count() or 1,
+                threads_per_worker=1,
+                processes=True,
+                dashboard_address=None,
+                silence_logs=logging.ERROR,
+            )
+            self.client = Client(self.cluster)
+        elif isinstance(scheduler, str):
+            try:
+                self.client = Client(scheduler, timeout="20s")
+            except (OSError, TimeoutError, ValueError) as error:
+                raise CaseError("--scheduler", f"cannot connect to {scheduler!r}: {error}") from None
+        else:
+            raise CaseError("scheduler", f"give a scheduler address, a distributed.Client, {SERIAL!r} or None, got {scheduler!r}")
+
+    def close(self) -> None:
+        if self.owned and self.client is not None:
+            self.client.close()
+        if self.cluster is not None:
+            self.cluster.close()
+
+
+def _run_tasks(tasks: list[_Task], client, seed: int, tolerance: float, done: Callable[[_Task, dict], None]) -> None:
+    """Run ``tasks`` serially (``client`` None) or on Dask, a bounded window in
+    flight at a time (client memory stays flat however many chunks), calling
+    ``done(task, result)`` in this thread as each finishes."""
+
+    def call(task: _Task):
+        if task.is_chunk:
+            return chunk_sums, (task.point.data, seed, task.first, task.count, tolerance)
+        return point_estimate, (task.point.data,)
+
+    if client is None:
+        for task in tasks:
+            function, arguments = call(task)
+            done(task, function(*arguments))
+        return
+    from distributed import as_completed
+
+    window = max(4, 3 * sum(client.nthreads().values()))
+    queue = iter(tasks)
+    pending = {}
+
+    def submit(task: _Task):
+        function, arguments = call(task)
+        label = f"chunk-{task.first}-{task.count}" if task.is_chunk else "estimate"
+        future = client.submit(function, *arguments, key=f"pounding-sweep-{task.point.key}-{label}")
+        pending[future] = task
+        return future
+
+    running = as_completed([submit(task) for task in itertools.islice(queue, window)])
+    try:
+        for future in running:
+            task = pending.pop(future)
+            result = future.result()
+            future.release()
+            done(task, result)
+            following = next(queue, None)
+            if following is not None:
+                running.add(submit(following))
+    finally:
+        for future in pending:
+            future.cancel()
+
+
+def _missing(points: list[_Point], chunks: list[tuple[int, int]], store: _Store) -> tuple[list[_Task], int]:
+    """The tasks whose files are missing (or unreadable), and the number of chunks found done."""
+    tasks, found = [], 0
+    for point in points:
+        if store.estimate(point) is None:
+            tasks.append(_Task(point))
+        for first, count in chunks:
+            if store.chunk(point, first, count) is None:
+                tasks.append(_Task(point, first, count))
+            else:
+                found += 1
+    return tasks, found
+
+
+def _within_budget(tasks: list[_Task], max_chunks: int) -> list[_Task]:
+    """The first ``max_chunks`` chunk tasks, and every estimate task."""
+    kept = []
+    for task in tasks:
+        if task.is_chunk:
+            if max_chunks == 0:
+                continue
+            max_chunks -= 1
+        kept.append(task)
+    return kept
+
+
+def _compute(tasks: list[_Task], store: _Store, scheduler, workers, seed: int, tolerance: float,
+             progress: Callable[[int, int], None] | None, done: int, total: int) -> int:
+    """Run ``tasks``, saving each result as it arrives; returns the chunks computed."""
+    computed = 0
+    if progress is not None:
+        progress(done, total)
+
+    def finished(task: _Task, result: dict) -> None:
+        nonlocal computed, done
+        if not task.is_chunk:
+            _write_json(store.estimate_path(task.point), result)
+            return
+        _write_json(store.chunk_path(task.point, task.first, task.count), result)
+        computed += 1
+        done += task.count
+        if progress is not None:
+            progress(done, total)
+
+    if tasks:
+        client = _Client(scheduler, workers)
+        try:
+            if client.client is not None:
+                client.client.run(_warm, tasks[0].point.data)
+            _run_tasks(tasks, client.client, seed, tolerance, finished)
+        finally:
+            client.close()
+    return computed
+
+
+def sweep(
+    case,
+    vary: Mapping[str, Sequence[float] | str] | Iterable[str] | None,
+    records: int = 100,
+    seed: int = 0,
+    output_dir: str | os.PathLike = "sweep",
+    scheduler=None,
+    chunk_records: int = CHUNK_RECORDS,
+    progress: Callable[[int, int], None] | None = None,
+    *,
+    workers: int | None = None,
+    tolerance: float = DEFAULT_TOLERANCE,
+    table_format: str = "csv",
+    chart: bool = True,
+    max_chunks: int | None = None,
+):
+    """Closed form and Monte Carlo at every combination of the varied keys, resumable.
+
+    Parameters
+    ----------
+    case : str, path or dict
+        A preset name, a TOML case file, or a parsed case file (dict).
+    vary : dict or list of str
+        ``{path: values}`` (values a sequence of numbers or a spec string
+        ``"start:stop:count"`` / ``"a,b,c"``), or ``["path=values", ...]``.
+        A path is a key of the case file (``"contact.gap"``,
+        ``"buildings.2.storeys.1.period"``; buildings and storeys counted from
+        1); values are in the case's units. Points are all combinations, the
+        last path varying fastest. Empty or None: the case alone.
+    records : int
+        Monte Carlo records per point.
+    seed : int
+        Seed of the study; records are seeded one by one, so the numbers do
+        not depend on ``chunk_records``, workers or scheduler.
+    output_dir : str or path
+        Folder of the finished chunks, the table and the chart (made if missing).
+        Rerunning with the same folder computes only what is missing.
+    scheduler : None, str or distributed.Client
+        None: a local Dask cluster of ``workers`` processes (default: one per
+        core), started and stopped here. An address (``"tcp://host:8786"``):
+        that cluster. A ``distributed.Client``: used as is (not closed).
+        ``"serial"``: everything in this process, without Dask.
+    chunk_records : int
+        Records per Dask task.
+    progress : callable, optional
+        ``progress(done, total)`` in records, after each chunk (chunks found
+        on disk count as done from the start).
+    workers : int, optional
+        Worker processes of the local cluster (scheduler None).
+    tolerance : float
+        Relative tolerance of the integrator [-].
+    table_format : {"csv", "parquet"}
+        Format of the table written to ``output_dir`` (Parquet needs pyarrow).
+    chart : bool
+        Write the design chart ``sweep.html`` (imports Bokeh).
+    max_chunks : int, optional
+        Stop, with :class:`SweepInterrupted`, once this many chunks have been
+        computed by this call (their files kept): a budgeted run, or a test
+        of resuming.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per point: ``point``; one column per varied path (case
+        units); ``records``, ``seed``; closed form ``estimate_force_N``,
+        ``paper_force_N`` (the paper's Eq. 12-30; NaN for laws it does not
+        cover), ``estimate_pounding_probability``, ``estimate_impacts``,
+        ``required_gap_m`` (95 % no pounding), ``sigma_relative_displacement_m``;
+        Monte Carlo ``mc_force_mean_N``, ``mc_force_std_error_N``,
+        ``mc_force_ci_low_N``, ``mc_force_ci_high_N`` (95 %, Student t),
+        ``mc_force_max_N``, ``mc_pounding_fraction``, ``mc_impacts_mean``,
+        ``mc_impact_velocity_mean_m_s``, ``mc_penetration_max_m``;
+        ``estimate_warnings``; ``key`` (the point's folder). ``attrs`` holds
+        ``chunks_computed``, ``chunks_reused``, ``table``, ``chart``, ``units``.
+
+    Raises
+    ------
+    CaseError
+        A bad varied path or value (field ``--vary``), a point whose case is
+        invalid (naming its field and the point), bad counts.
+    SweepInterrupted
+        ``max_chunks`` reached.
+    pounding.SimulationError
+        A record failed to integrate.
+    """
+    _check_whole("records", records, 1)
+    _check_whole("seed", seed, 0)
+    _check_whole("chunk_records", chunk_records, 1)
+    if workers is not None:
+        _check_whole("workers", workers, 1)
+    if max_chunks is not None:
+        _check_whole("max_chunks", max_chunks, 0)
+    if table_format not in TABLE_FORMATS:
+        raise CaseError("format", f"unknown table format {table_format!r}; allowed: {', '.join(TABLE_FORMATS)}")
+    if table_format == "parquet":
+        _need_parquet()
+    from ..simulation import Settings
+
+    Settings(tolerance=tolerance)  # validates it
+    data, name = _case_data(case)
+    varied = _normalized_vary(vary)
+    paths = [path for path, _ in varied]
+    points = _points(data, name, varied, seed, tolerance)
+    store = _Store(Path(output_dir))
+    units = str(data.get("units", "SI"))
+    store.write_manifest({
+        "case": name, "units": units, "vary": {path: list(values) for path, values in varied}, "records": records,
+        "seed": seed, "chunk_records": chunk_records, "tolerance": tolerance,
+        "points": [{"point": p.index, "key": p.key, **dict(zip(paths, p.values))} for p in points],
+    })
+    for point in points:
+        store.write_point(point, paths)
+
+    chunks = _chunks(records, chunk_records)
+    tasks, reused = _missing(points, chunks, store)
+    missing = sum(task.is_chunk for task in tasks)
+    if max_chunks is not None and missing > max_chunks:
+        tasks = _within_budget(tasks, max_chunks)
+    found = sum(count for _, count in chunks) * len(points) - sum(task.count for task in tasks if task.is_chunk)
+    computed = _compute(tasks, store, scheduler, workers, seed, tolerance, progress, found, records * len(points))
+    if computed < missing:
+        raise SweepInterrupted(
+            f"stopped after {computed} chunk(s), {missing - computed} still missing; rerun to resume", computed, missing - computed
+        )
+
+    table = _table(points, paths, chunks, store, records, seed)
+    table.attrs.update(chunks_computed=computed, chunks_reused=reused, units=units)
+    table_path = store.root / f"sweep.{table_format}"
+    _write_table(table, table_path, table_format)
+    table.attrs["table"] = str(table_path)
+    table.attrs["chart"] = None
+    if chart:
+        table.attrs["chart"] = str(write_chart(table, paths, store.root / "sweep.html", units=units, title=f"Sweep of {name}"))
+    return table
+
+
+def _totals(point: _Point, chunks: list[tuple[int, int]], store: _Store) -> dict:
+    """The chunks' sums added up, exactly."""
+    n = pounding = impacts = 0
+    force = square = velocity = Fraction(0)
+    force_max = penetration_max = 0.0
+    for first, count in chunks:
+        chunk = store.chunk(point, first, count)
+        n += chunk["records"]
+        force += Fraction(chunk["force_sum"])
+        square += Fraction(chunk["force_square_sum"])
+        velocity += Fraction(chunk["impact_velocity_sum"])
+        pounding += chunk["pounding_records"]
+        impacts += chunk["impacts"]
+        force_max = max(force_max, chunk["force_max"])
+        penetration_max = max(penetration_max, chunk["penetration_max"])
+    return dict(n=n, force=force, square=square, velocity=velocity, pounding=pounding, impacts=impacts,
+                force_max=force_max, penetration_max=penetration_max)
+
+
+def monte_carlo_summary(totals: dict) -> dict:
+    """Mean, standard error and 95 % CI of F_max [N] from exact sums (see :func:`chunk_sums`).
+
+    The mean is the exact mean correctly rounded; the variance is formed
+    exactly, so there is no cancellation in sum(F^2) - sum(F)^2 / n.
+    """
+    from scipy.special import stdtrit
+
+    n = totals["n"]
+    mean = totals["force"] / n
+    if n >= 2:
+        variance = (totals["square"] - totals["force"] * mean) / (n - 1)
+        std_error = math.sqrt(float(variance / n))
+        half = float(stdtrit(n - 1, 0.975)) * std_error
+    else:
+        std_error = half = math.inf
+    mean = float(mean)
+    return {
+        "mc_force_mean_N": mean,
+        "mc_force_std_error_N": std_error,
+        "mc_force_ci_low_N": mean - half,
+        "mc_force_ci_high_N": mean + half,
+        "mc_force_max_N": totals["force_max"],
+        "mc_pounding_fraction": totals["pounding"] / n,
+        "mc_impacts_mean": totals["impacts"] / n,
+        "mc_impact_velocity_mean_m_s": float(totals["velocity"] / n),
+        "mc_penetration_max_m": totals["penetration_max"],
+    }
+
+
+def _table(points: list[_Point], paths: list[str], chunks, store: _Store, records: int, seed: int):
+    import pandas as pd
+
+    def number(value):
+        return math.nan if value is None else value
+
+    rows = []
+    for point in points:
+        estimate = store.estimate(point)
+        rows.append({
+            "point": point.index,
+            **dict(zip(paths, point.values)),
+            "records": records,
+            "seed": seed,
+            "estimate_force_N": number(estimate["force"]),
+            "paper_force_N": number(estimate["paper_force"]),
+            "estimate_pounding_probability": number(estimate["pounding_probability"]),
+            "estimate_impacts": number(estimate["impacts"]),
+            "required_gap_m": number(estimate["required_gap"]),
+            "sigma_relative_displacement_m": number(estimate["sigma_relative_displacement"]),
+            **monte_carlo_summary(_totals(point, chunks, store)),
+            "estimate_warnings": "; ".join(estimate["warnings"]),
+            "key": point.key,
+        })
+    return pd.DataFrame(rows)
+
+
+def _need_parquet() -> None:
+    try:
+        import pyarrow  # noqa: F401
+    except ImportError:
+        raise CaseError("format", "parquet needs pyarrow (python -m pip install pyarrow); or use csv") from None
+
+
+def _write_table(table, path: Path, table_format: str) -> None:
+    import io
+
+    if table_format == "csv":
+        _write_atomic(path, table.to_csv(index=False).encode())
+    else:
+        buffer = io.BytesIO()
+        table.to_parquet(buffer, index=False)
+        _write_atomic(path, buffer.getvalue())
