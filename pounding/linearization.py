@@ -907,10 +907,16 @@ def equivalent_storey_force(linearized: LinearizedBuilding, time, drift) -> np.n
         with np.errstate(invalid="ignore", divide="ignore"):
             rate = np.where(step[:, 0] > 0, increment[:, j] / step[:, 0], 0.0)
         forcing = linearized.c_e[j] * rate * np.expm1(k_e * step[:, 0]) / k_e
-        column = np.zeros(time.size)
-        value = 0.0
-        for i in range(step.shape[0]):
-            value = value * decay[i] + forcing[i]
-            column[i + 1] = value
-        z[:, j] = column
+        z[:, j] = _first_order_recurrence(decay, forcing)
     return alpha * k * drift + (1.0 - alpha) * k * z
+
+
+@njit(cache=True)
+def _first_order_recurrence(decay, forcing):
+    """y[0] = 0, y[i + 1] = y[i] decay[i] + forcing[i] (compiled: a record has thousands of steps)."""
+    out = np.zeros(decay.size + 1)
+    value = 0.0
+    for i in range(decay.size):
+        value = value * decay[i] + forcing[i]
+        out[i + 1] = value
+    return out

@@ -329,7 +329,8 @@ class Figures:
             "current": cds(gap=[], force=[]),
             "marker": cds(gap=[], force=[]),
             "mc": cds(gap=[], force=[], low=[], high=[], fraction=[]),
-            "psd": cds(omega=[], ground=[], velocity=[]),
+            "psd_ground": cds(omega=[], ground=[]),
+            "psd_velocity": cds(omega=[], velocity=[]),
             "hysteresis1": cds(drift=[], force=[], equivalent=[]),
             "hysteresis2": cds(drift=[], force=[], equivalent=[]),
             "impact1": cds(drift=[], force=[]),
@@ -356,11 +357,11 @@ class Figures:
         self.gap = g
 
         self.psd_ground = figure(title="Ground acceleration PSD (two-sided, Eq. 7)", height=300, x_axis_type="log", y_axis_type="log", **common)
-        self.psd_ground.line("omega", "ground", source=src["psd"], color="#7f7f7f", line_width=2)
+        self.psd_ground.line("omega", "ground", source=src["psd_ground"], color="#7f7f7f", line_width=2)
         self.psd_velocity = figure(
             title="Relative velocity PSD at the contact floors (linearized pair)", height=300, x_axis_type="log", y_axis_type="log", **common
         )
-        self.psd_velocity.line("omega", "velocity", source=src["psd"], color="#1f77b4", line_width=2)
+        self.psd_velocity.line("omega", "velocity", source=src["psd_velocity"], color="#1f77b4", line_width=2)
         for f in (self.psd_ground, self.psd_velocity):
             f.xaxis.axis_label = "circular frequency [rad/s]"
 
@@ -398,43 +399,57 @@ class Figures:
         self.contact.yaxis.axis_label = f"pounding force [{d.force_unit}]"
         if snapshot is None:
             for source in src.values():
-                source.data = {key: [] for key in source.data}
+                _refill(source, **{key: [] for key in source.data})
             return
         curve = snapshot.gap_curve
         paper = np.nan if curve.paper_force_expected is None else curve.paper_force_expected / fs
         force = curve.force_expected / fs
-        src["gap"].data = dict(gap=curve.gaps / ls, force=force, paper=np.full(curve.gaps.size, paper), probability=curve.pounding_probability)
+        _refill(src["gap"], gap=curve.gaps / ls, force=force, paper=np.full(curve.gaps.size, paper), probability=curve.pounding_probability)
         gap = snapshot.case.contact.gap / ls
-        src["current"].data = dict(gap=[gap], force=[snapshot.estimate.force_expected / fs])
+        _refill(src["current"], gap=[gap], force=[snapshot.estimate.force_expected / fs])
         top = np.nanmax([*force, paper, 0.0])
-        src["marker"].data = dict(gap=[gap, gap], force=[0.0, top])
+        _refill(src["marker"], gap=[gap, gap], force=[0.0, top])
         points = [m for m in monte_carlo if math.isfinite(m.force_low)]
-        src["mc"].data = dict(
+        _refill(
+            src["mc"],
             gap=[m.gap / ls for m in points], force=[m.force_max_mean / fs for m in points], low=[m.force_low / fs for m in points],
             high=[m.force_high / fs for m in points], fraction=[m.pounding_fraction for m in points],
         )
         velocity = np.where(snapshot.psd_velocity > 0, snapshot.psd_velocity, np.nan)
         if np.any(np.isfinite(velocity)):
             velocity = np.where(velocity < np.nanmax(velocity) * 1e-8, np.nan, velocity)  # its fall to 0 past the cutoff
-        src["psd"].data = dict(omega=snapshot.omega, ground=snapshot.psd_ground / ls**2, velocity=velocity / vs**2)
+        _refill(src["psd_ground"], omega=snapshot.omega, ground=snapshot.psd_ground / ls**2)
+        _refill(src["psd_velocity"], omega=snapshot.omega, velocity=velocity / vs**2)
         history = snapshot.history
         shown = None if history is None else _plotted_steps(history)
         for b in (1, 2):
             if history is None:
-                src[f"hysteresis{b}"].data = dict(drift=[], force=[], equivalent=[])
-                src[f"impact{b}"].data = dict(drift=[], force=[])
+                _refill(src[f"hysteresis{b}"], drift=[], force=[], equivalent=[])
+                _refill(src[f"impact{b}"], drift=[], force=[])
                 continue
             column = history.floor(b, 1)
             drift = history.drift[shown, column] / ls
             restoring = history.storey_force[shown, column] / fs
             equivalent = snapshot.equivalent_force[b - 1][shown, 0] / fs
-            src[f"hysteresis{b}"].data = dict(drift=drift, force=restoring, equivalent=equivalent)
+            _refill(src[f"hysteresis{b}"], drift=drift, force=restoring, equivalent=equivalent)
             impact = history.contact_force[shown] > 0
-            src[f"impact{b}"].data = dict(drift=drift[impact], force=restoring[impact])
+            _refill(src[f"impact{b}"], drift=drift[impact], force=restoring[impact])
         if history is None:
-            src["contact"].data = dict(time=[], force=[])
+            _refill(src["contact"], time=[], force=[])
         else:
-            src["contact"].data = dict(time=history.time[shown], force=history.contact_force[shown] / fs)
+            _refill(src["contact"], time=history.time[shown], force=history.contact_force[shown] / fs)
+
+
+def _refill(source, **columns) -> None:
+    """Replace a plot's data, unless it is unchanged: an unchanged source sends
+    nothing to the browser, which then does not repaint that plot (most
+    changes of input leave the ground spectrum, and the Monte Carlo points, as they are)."""
+    old = source.data
+    if old.keys() == columns.keys() and all(
+        np.array_equal(np.asarray(old[key], dtype=float), np.asarray(value, dtype=float), equal_nan=True) for key, value in columns.items()
+    ):
+        return
+    source.data = columns
 
 
 PLOTTED_STEPS = 1500

@@ -286,3 +286,29 @@ def test_tall_building_uses_the_general_lyapunov_solver():
     np.testing.assert_allclose(c_e, linear.c_e, rtol=1e-7)
     np.testing.assert_allclose(k_e, linear.k_e, rtol=1e-7)
     assert np.all(linear.c_e < 1.0)  # yielding in every storey
+
+
+def test_equivalent_storey_force_integrates_the_linear_law_along_a_drift_history():
+    """Against solve_ivp on zdot = c_e udot + k_e z (Eq. 19), the drift linear
+    between uneven samples: q = alpha k u + (1 - alpha) k z at every sample."""
+    from scipy.integrate import solve_ivp
+
+    from pounding.linearization import equivalent_storey_force
+
+    case = pounding.load_case("section5-T2-0.4")
+    building = linearize_pair(case)[0]
+    assert building.hysteretic[0]
+    rng = np.random.default_rng(3)
+    time = np.sort(np.concatenate([[0.0, 6.0], rng.uniform(0.0, 6.0, 400)]))
+    drift = 0.05 * np.sin(2.1 * time) * (1 + 0.3 * np.cos(0.7 * time))
+    rate = np.diff(drift) / np.diff(time)
+    c_e, k_e = building.c_e[0], building.k_e[0]
+    z = [0.0]
+    for i in range(time.size - 1):  # one solve per piece: the drift rate jumps at the samples
+        piece = solve_ivp(lambda t, y, s=rate[i]: c_e * s + k_e * y, (time[i], time[i + 1]), [z[-1]], rtol=1e-12, atol=1e-15)
+        z.append(piece.y[0, -1])
+    storey = building.building.storeys[0]
+    alpha = storey.bouc_wen.alpha
+    expected = alpha * storey.stiffness * drift + (1 - alpha) * storey.stiffness * np.array(z)
+    force = equivalent_storey_force(building, time, drift[:, None])[:, 0]
+    assert np.max(np.abs(force - expected)) < 1e-8 * np.max(np.abs(expected))

@@ -81,3 +81,25 @@ def test_report_cites_the_method_and_shows_the_estimators_warnings(report):
     # The default case's gap for 95 % no pounding lies in the rare-pounding regime: its warning is shown.
     for warning in estimate(load_case(DEFAULT_PRESET)).warnings:
         assert warning.split(":")[0][:40] in text
+
+
+def test_refilling_the_plots_sends_only_what_changed():
+    """A change of T2 changes the velocity spectrum, not the ground's: the
+    ground spectrum's source is left alone (no message, no repaint), and a
+    second fill with the same snapshot replaces no source."""
+    from dataclasses import replace
+
+    from pounding.report import Figures
+
+    case = load_case(DEFAULT_PRESET)
+    stiffer = replace(case, buildings=(case.buildings[0], replace(case.buildings[1], storeys=(
+        replace(case.buildings[1].storeys[0], stiffness=1.2 * case.buildings[1].storeys[0].stiffness),))))
+    figures = Figures()
+    figures.fill(compute_snapshot(case))
+    before = {name: source.data for name, source in figures.sources.items()}
+    figures.fill(compute_snapshot(case))
+    assert all(figures.sources[name].data is data for name, data in before.items())
+    figures.fill(compute_snapshot(stiffer))
+    assert figures.sources["psd_ground"].data is before["psd_ground"]
+    assert figures.sources["psd_velocity"].data is not before["psd_velocity"]
+    assert figures.sources["gap"].data is not before["gap"]
