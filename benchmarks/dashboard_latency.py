@@ -101,7 +101,9 @@ async def measure(page, handle, n: int, settle_ms: int = 0) -> list[float]:
 
 
 def summary(times: list[float]) -> str:
-    return f"median {statistics.median(times):.0f} ms, 90th percentile {statistics.quantiles(times, n=10)[-1]:.0f} ms, max {max(times):.0f} ms"
+    over = sum(t > 1000 for t in times)
+    return (f"median {statistics.median(times):.0f} ms, 90th percentile {statistics.quantiles(times, n=10)[-1]:.0f} ms, "
+            f"max {max(times):.0f} ms, over 1 s: {over} of {len(times)}")
 
 
 async def run(process, url) -> None:
