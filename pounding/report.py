@@ -328,6 +328,7 @@ class Figures:
             "gap": cds(gap=[], force=[], paper=[], probability=[]),
             "current": cds(gap=[], force=[]),
             "marker": cds(gap=[], force=[]),
+            "required": cds(gap=[], probability=[]),
             "mc": cds(gap=[], force=[], low=[], high=[], fraction=[]),
             "psd_ground": cds(omega=[], ground=[]),
             "psd_velocity": cds(omega=[], velocity=[]),
@@ -347,12 +348,14 @@ class Figures:
         g.line("gap", "probability", source=src["gap"], color="#2ca02c", y_range_name="probability", legend_label="probability of pounding")
         g.line("gap", "force", source=src["marker"], color="#555555", line_dash="dotted")
         g.scatter("gap", "force", source=src["current"], color="#1f77b4", size=11, legend_label="current gap")
+        g.line("gap", "probability", source=src["required"], color="#2ca02c", line_dash="dashdot", y_range_name="probability",
+               legend_label="gap needed for the target")
         g.add_layout(Whisker(base="gap", lower="low", upper="high", source=src["mc"], line_color="black"))
         g.scatter("gap", "force", source=src["mc"], color="black", marker="square", size=8, legend_label="Monte Carlo mean F_max (95 % CI)")
         g.scatter("gap", "fraction", source=src["mc"], color="#2ca02c", marker="triangle", size=8, y_range_name="probability",
                   legend_label="Monte Carlo pounding fraction")
-        g.legend.location = "top_right"
         g.legend.click_policy = "hide"
+        g.add_layout(g.legend[0], "right")  # beside the plot: the curves fill its corners
         g.add_tools(HoverTool(tooltips=[("gap", "@gap"), ("force", "@force")]))
         self.gap = g
 
@@ -409,6 +412,8 @@ class Figures:
         _refill(src["current"], gap=[gap], force=[snapshot.estimate.force_expected / fs])
         top = np.nanmax([*force, paper, 0.0])
         _refill(src["marker"], gap=[gap, gap], force=[0.0, top])
+        required = snapshot.estimate.required_gap / ls
+        _refill(src["required"], gap=[required, required], probability=[0.0, 1.0])
         points = [m for m in monte_carlo if math.isfinite(m.force_low)]
         _refill(
             src["mc"],
