@@ -30,7 +30,7 @@ def test_report_is_self_contained(report):
 
 
 def test_failed_write_leaves_no_file(tmp_path, monkeypatch):
-    import pounding.report as module
+    import pounding.report.static as module  # where write_report looks up os.fsync
 
     snapshot = compute_snapshot(load_case(DEFAULT_PRESET))
 

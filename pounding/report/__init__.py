@@ -1,0 +1,58 @@
+"""What the dashboard shows for one case, and the static HTML report of it.
+
+:func:`compute_snapshot` runs the library once for a case (one
+linearization, passed to every estimator): both closed-form estimates, force
+against gap, the power spectra, one seeded record's hysteresis loops beside
+the equivalent linear storeys. The plot builders and :func:`result_html` turn a
+:class:`Snapshot` into HoloViews plots and an HTML result card; the dashboard
+shows them live and :func:`write_report` writes them to one self-contained
+HTML file (all JS/CSS inline, interactive Bokeh plots, opens offline): the
+dashboard's *Export* button and ``pounding report`` both call it.
+
+Nothing here computes physics: every number comes from the library. Units:
+SI inside; :class:`Display` scales for the page (forces in kN/MN or kgf).
+
+This package imports no plotting library at load: Bokeh is imported when
+figures are built or a report is written.
+
+Modules: :mod:`.display` (display units), :mod:`.snapshot` (the computed
+state), :mod:`.card` (the result card), :mod:`.figures` (the plots),
+:mod:`.static` (the static report).
+"""
+
+from .card import RESULT_CSS, result_html
+from .display import DISPLAY_UNITS, Display, display
+from .figures import PLOTTED_STEPS, Figures
+from .snapshot import (
+    DEFAULT_RECORD,
+    DEFAULT_SEED,
+    GAP_POINTS,
+    PSD_POINTS,
+    MonteCarloPoint,
+    Snapshot,
+    compute_snapshot,
+    gap_grid,
+)
+from .static import METHOD_NOTES, REPORT_NOTE, report_html, write_report
+
+__all__ = [
+    "DEFAULT_RECORD",
+    "DEFAULT_SEED",
+    "DISPLAY_UNITS",
+    "Display",
+    "GAP_POINTS",
+    "METHOD_NOTES",
+    "MonteCarloPoint",
+    "PLOTTED_STEPS",
+    "PSD_POINTS",
+    "REPORT_NOTE",
+    "RESULT_CSS",
+    "Snapshot",
+    "compute_snapshot",
+    "display",
+    "Figures",
+    "gap_grid",
+    "report_html",
+    "result_html",
+    "write_report",
+]

@@ -1,0 +1,84 @@
+"""The result card: :func:`result_html` shows a :class:`~.snapshot.Snapshot`'s
+estimates as HTML, styled by :data:`RESULT_CSS`."""
+
+from __future__ import annotations
+
+import html
+
+from .display import display
+from .snapshot import MonteCarloPoint, Snapshot
+
+# --- the result card -----------------------------------------------------------
+
+
+def _row(label: str, recommended: str, paper: str, css: str = "") -> str:
+    return f'<tr class="{css}"><th>{label}</th><td>{recommended}</td><td>{paper}</td></tr>'
+
+
+def result_html(snapshot: Snapshot, units: str = "SI", monte_carlo: MonteCarloPoint | None = None, monte_carlo_note: str = "") -> str:
+    """The result card: recommended and paper's F_e side by side, each with its chain.
+
+    ``monte_carlo`` is a study of exactly this case (shown beside F_e);
+    ``monte_carlo_note`` says why none is shown.
+    """
+    d = display(units)
+    e, p, case = snapshot.estimate, snapshot.estimate.paper, snapshot.case
+    rate = "1/s"
+    stationary = case.excitation.stationary
+    sigma_paper = d.velocity(e.sigma_relative_velocity) if stationary else d.velocity(p.sigma_relative_velocity_equivalent) + " (sigma_eq, Eq. 29)"
+    rows = [
+        _row(
+            "expected extreme pounding force F<sub>e</sub>",
+            f'<span class="fe-recommended">{d.force(e.force_expected)}</span>',
+            f'<span class="fe-paper">{d.force(p.force_expected)}</span>',
+            "headline",
+        ),
+        _row("sigma of relative displacement", d.length(e.sigma_relative_displacement), d.length(e.sigma_relative_displacement)),
+        _row("sigma of relative velocity", d.velocity(e.sigma_relative_velocity), sigma_paper),
+        _row("crossing rate", f"{e.upcrossing_rate:.4g} {rate} (nu<sub>0</sub><sup>+</sup>)", f"{p.crossing_rate:.4g} {rate} (nu, Eq. 24)"),
+        _row("effective duration", f"{case.excitation.duration:.4g} s", f"{p.duration_effective:.4g} s"),
+        _row("peak factor", "(over the gap: no single factor)", f"{p.peak_factor:.4g} (Davenport, Eq. 23)"),
+        _row("expected impact velocity", d.velocity(e.relative_velocity_expected), d.velocity(p.relative_velocity_expected)),
+        _row("peak penetration", "n/a", d.length(p.penetration_expected)),
+        _row("peak force ratio K(e)", f"{e.peak_force_ratio:.4g}", "1 (undamped Hertz)"),
+        _row("expected number of impacts", f"{e.impacts_expected:.4g}", "(ignores the gap)"),
+    ]
+    if monte_carlo is not None:
+        mc = (
+            f'<span class="mc-mean">{d.force(monte_carlo.force_max_mean)}</span> '
+            f"(95 % CI {d.force(monte_carlo.force_low)} to {d.force(monte_carlo.force_high)}; "
+            f"{monte_carlo.records} records, seed {monte_carlo.seed}; pounding in {100 * monte_carlo.pounding_fraction:.0f} %)"
+        )
+    else:
+        mc = html.escape(monte_carlo_note or "not run")
+    summary = (
+        f'<p class="probability">Probability of pounding during the {case.excitation.duration:g} s record: '
+        f'<b><span class="pounding-probability">{100 * e.pounding_probability:.3g} %</span></b> '
+        f"at the gap of {d.length(case.contact.gap)}. "
+        f'Gap for {100 * e.target_probability:.0f} % probability of no pounding: '
+        f'<b><span class="required-gap">{d.length(e.required_gap)}</span></b> '
+        f"(SRSS {d.length(e.separation_rules['srss'])}, ABS {d.length(e.separation_rules['abs'])}, "
+        f"DDC {d.length(e.separation_rules['ddc'])}).</p>"
+        f'<p class="monte-carlo">Monte Carlo mean F<sub>max</sub>: {mc}</p>'
+    )
+    summary += f'<p class="measured-accuracy">Recommended F<sub>e</sub>: {html.escape(e.measured_accuracy)} (docs/estimator.md).</p>'
+    if e.warnings:
+        summary += "".join(f'<p class="estimate-warning">&#9888; {html.escape(w)}</p>' for w in e.warnings)
+    return (
+        '<div class="pounding-result">'
+        "<table><thead><tr><th></th><th>recommended (gap-aware)</th><th>paper (Eq. 12-30)</th></tr></thead><tbody>"
+        + "".join(rows)
+        + "</tbody></table>"
+        + summary
+        + "</div>"
+    )
+
+
+RESULT_CSS = """
+.pounding-result table { border-collapse: collapse; font-size: 14px; }
+.pounding-result th, .pounding-result td { padding: 3px 10px; border-bottom: 1px solid #ddd; text-align: left; }
+.pounding-result tr.headline td { font-size: 20px; font-weight: bold; color: #0b4f8a; }
+.pounding-result p { font-size: 14px; margin: 6px 0; }
+.pounding-result p.estimate-warning { color: #8a4b00; }
+.pounding-result p.measured-accuracy { color: #555; font-size: 0.9em; }
+"""

@@ -1,0 +1,130 @@
+"""The computed state: :func:`compute_snapshot` runs the library once for a
+case and keeps everything shown for it in a :class:`Snapshot` (all SI)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..case import Case
+from ..errors import SimulationError
+from ..estimator import DEFAULT_TARGET_PROBABILITY, Estimate, GapCurve, estimate
+from ..linearization import equivalent_storey_force, linearize_pair
+from ..response import psd_relative_velocity
+from ..simulation import SimulationResult, TimeHistory, simulate_record
+
+DEFAULT_SEED = 1
+"""Seed of the study whose record the hysteresis loops show."""
+DEFAULT_RECORD = 0
+"""Index of that record."""
+GAP_POINTS = 41
+"""Gaps of the force-versus-gap curve."""
+PSD_POINTS = 400
+"""Frequencies of the spectra."""
+
+
+# --- the computed state --------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class MonteCarloPoint:
+    """Summary of one Monte Carlo study: mean extreme force [N] with its 95 %
+    confidence interval [N], pounding fraction [-], at ``gap`` [m]."""
+
+    gap: float
+    records: int
+    seed: int
+    force_max_mean: float
+    force_low: float
+    force_high: float
+    pounding_fraction: float
+
+    @classmethod
+    def from_result(cls, result: SimulationResult) -> MonteCarloPoint:
+        low, high = result.force_max_confidence_interval
+        return cls(
+            result.case.contact.gap, result.n_records, result.seed, result.force_max_mean, low, high, result.pounding_fraction
+        )
+
+
+@dataclass(frozen=True, eq=False)
+class Snapshot:
+    """Everything shown for one case; all SI.
+
+    Attributes
+    ----------
+    case : Case
+    linearized : tuple of two LinearizedBuilding
+    estimate : Estimate
+    gap_curve : GapCurve
+    omega : ndarray
+        Circular frequencies of the spectra [rad/s].
+    psd_ground : ndarray
+        Two-sided PSD of ground acceleration [m^2/s^3] (Eq. 7).
+    psd_velocity : ndarray
+        Two-sided PSD of the relative velocity at the contact floors [m^2/s].
+    history : TimeHistory or None
+        Record ``record`` of the study seeded ``seed``; None if it failed.
+    history_error : str
+        Why ``history`` is None.
+    equivalent_force : tuple of two ndarray
+        Restoring force of the equivalent linear storeys along the record's drifts [N].
+    seed, record : int
+    monte_carlo : tuple of MonteCarloPoint
+        Studies of this case (at any gap) to show beside the estimates.
+    """
+
+    case: Case
+    linearized: tuple
+    estimate: Estimate
+    gap_curve: GapCurve
+    omega: np.ndarray
+    psd_ground: np.ndarray
+    psd_velocity: np.ndarray
+    history: TimeHistory | None
+    history_error: str
+    equivalent_force: tuple
+    seed: int = DEFAULT_SEED
+    record: int = DEFAULT_RECORD
+    monte_carlo: tuple = field(default=())
+
+
+def gap_grid(case: Case, result: Estimate, points: int = GAP_POINTS) -> np.ndarray:
+    """Gaps [m] from 0 past the required gap and twice the case's gap, with the case's gap among them."""
+    top = max(1.25 * result.required_gap, 2.0 * case.contact.gap, 1e-3)
+    return np.unique(np.append(np.linspace(0.0, top, points), case.contact.gap))
+
+
+def compute_snapshot(
+    case: Case,
+    seed: int = DEFAULT_SEED,
+    record: int = DEFAULT_RECORD,
+    target_probability: float = DEFAULT_TARGET_PROBABILITY,
+    monte_carlo: tuple = (),
+) -> Snapshot:
+    """Run the library once for ``case``: the linearization is computed once and shared.
+
+    Raises whatever the library raises for an impossible case (``CaseError``,
+    ``ConvergenceError``); a failed record is kept in ``history_error``.
+    """
+    linearized = linearize_pair(case)
+    result = estimate(case, target_probability, linearized=linearized)
+    curve = result.gap_curve(gap_grid(case, result))
+    omega = np.geomspace(0.3, case.excitation.cutoff_frequency, PSD_POINTS)
+    psd_ground = np.asarray(case.excitation.spectrum.psd(omega), dtype=float)
+    psd_velocity = psd_relative_velocity(case, linearized, omega)
+    history, history_error, equivalent = None, "", ()
+    try:
+        history = simulate_record(case, seed, record)
+    except SimulationError as error:
+        history_error = str(error)
+    if history is not None:
+        equivalent = tuple(
+            equivalent_storey_force(lin, history.time, history.drift[:, [history.floor(b, j + 1) for j in range(lin.building.n_storeys)]])
+            for b, lin in enumerate(linearized, start=1)
+        )
+    return Snapshot(
+        case, linearized, result, curve, omega, psd_ground, psd_velocity, history, history_error, equivalent, seed, record,
+        tuple(monte_carlo),
+    )
