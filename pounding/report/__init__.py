@@ -4,7 +4,7 @@
 linearization, passed to every estimator): both closed-form estimates, force
 against gap, the power spectra, one seeded record's hysteresis loops beside
 the equivalent linear storeys. The plot builders and :func:`result_html` turn a
-:class:`Snapshot` into HoloViews plots and an HTML result card; the dashboard
+:class:`Snapshot` into Bokeh figures and an HTML result card; the dashboard
 shows them live and :func:`write_report` writes them to one self-contained
 HTML file (all JS/CSS inline, interactive Bokeh plots, opens offline): the
 dashboard's *Export* button and ``pounding report`` both call it.
@@ -15,13 +15,13 @@ SI inside; :class:`Display` scales for the page (forces in kN/MN or kgf).
 This package imports no plotting library at load: Bokeh is imported when
 figures are built or a report is written.
 
-Modules: :mod:`.display` (display units), :mod:`.snapshot` (the computed
+Modules: :mod:`.display_units` (display units), :mod:`.snapshot` (the computed
 state), :mod:`.card` (the result card), :mod:`.figures` (the plots),
 :mod:`.static` (the static report).
 """
 
 from .card import RESULT_CSS, result_html
-from .display import DISPLAY_UNITS, Display, display
+from .display_units import DISPLAY_UNITS, Display, display
 from .figures import PLOTTED_STEPS, Figures
 from .snapshot import (
     DEFAULT_RECORD,

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import html
 
-from .display import display
+from .display_units import display
 from .snapshot import MonteCarloPoint, Snapshot
 
 # --- the result card -----------------------------------------------------------

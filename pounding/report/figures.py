@@ -8,12 +8,10 @@ import math
 import numpy as np
 
 from ..simulation import TimeHistory
-from .display import display
+from .display_units import display
 from .snapshot import Snapshot
 
 # --- plots ---------------------------------------------------------------------
-
-_NAN2 = np.full(2, np.nan)
 
 
 class Figures:

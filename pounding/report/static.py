@@ -12,7 +12,7 @@ from pathlib import Path
 
 from ..case import Case
 from .card import RESULT_CSS, result_html
-from .display import display
+from .display_units import display
 from .figures import Figures
 from .snapshot import Snapshot, compute_snapshot
 
