@@ -235,7 +235,7 @@ def time_varying_covariance(model: StateSpace, envelope, times, modulation: str 
     times = np.asarray(times, dtype=float)
     if times.ndim != 1 or times.size < 1 or np.any(np.diff(times) <= 0.0):
         raise CaseError("times", "must be a one-dimensional increasing array")
-    A, Q = model.matrix, model.noise_covariance
+    A = model.matrix
     values = _envelope_values(envelope, times)
     if envelope is None and modulation == "ground":
         return _switched_on(model, times)
