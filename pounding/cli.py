@@ -111,7 +111,7 @@ def _parser() -> argparse.ArgumentParser:
     validate.add_argument("--records", type=_positive_int, default=300, help="Monte Carlo records per case (default 300)")
     validate.add_argument("--seed", type=_non_negative_int, default=1, help="seed of the studies (default 1)")
     validate.add_argument("--grid", action="store_true",
-                          help="instead of the paper's tables: both estimators against Monte Carlo on the 30-case accuracy grid "
+                          help="instead of the paper's tables: both estimators against Monte Carlo on the 33-case accuracy grid "
                           "(a Markdown table)")
     validate.add_argument("--json", action="store_true", help="print one JSON object (forces in N)")
 
