@@ -28,6 +28,7 @@ import math
 from dataclasses import dataclass
 from functools import lru_cache
 
+import numpy as np
 from numba import njit
 
 from .errors import CaseError
@@ -42,6 +43,7 @@ __all__ = [
     "undamped_peak_force",
     "peak_force_ratio",
     "impact_peak_force",
+    "opposed_peak_force_ratio",
 ]
 
 CONTACT_MODELS = ("jankowski", "hertz", "hertzdamp", "linear")
@@ -186,7 +188,6 @@ def peak_force_ratio(model: str, restitution: float) -> float:
     alone. It is found by running the time-history kernel on two free unit
     masses meeting at unit speed (about 0.1 ms).
     """
-    import numpy as np
 
     from . import integrator as kernel  # imports this module: import late
 
@@ -204,8 +205,91 @@ def peak_force_ratio(model: str, restitution: float) -> float:
     return float(summary[kernel.S_FORCE_MAX]) / undamped_peak_force(contact, 1.0, 1.0)
 
 
-def impact_peak_force(contact: Contact, approach_velocity, reduced_mass: float):
+def impact_peak_force(contact: Contact, approach_velocity, reduced_mass: float, opposing_force=0.0):
     """Peak force of one impact of two masses meeting at ``approach_velocity`` [N]:
-    ``peak_force_ratio`` times ``undamped_peak_force``. It grows as v^1.2
-    (v for ``linear``)."""
-    return peak_force_ratio(contact.model, contact.restitution) * undamped_peak_force(contact, approach_velocity, reduced_mass)
+    ``peak_force_ratio`` times ``undamped_peak_force``, which grows as v^1.2
+    (v for ``linear``). With an ``opposing_force`` [N] (the buildings' own
+    forces braking the approach, constant over the impact; broadcast against
+    the velocities) the ratio is :func:`opposed_peak_force_ratio`."""
+    undamped = undamped_peak_force(contact, approach_velocity, reduced_mass)
+    opposing = np.asarray(opposing_force, dtype=float)
+    if np.any(opposing < 0.0) or not np.all(np.isfinite(opposing)):
+        raise CaseError("opposing_force", f"must be finite and >= 0 N (it opposes the approach), got {opposing_force!r}")
+    if not np.any(opposing):
+        return peak_force_ratio(contact.model, contact.restitution) * undamped
+    undamped, opposing = np.broadcast_arrays(np.asarray(undamped, dtype=float), opposing)
+    moving = undamped > 0.0
+    phi = np.divide(opposing, undamped, out=np.zeros(undamped.shape), where=moving)
+    return np.where(moving, opposed_peak_force_ratio(contact.model, contact.restitution, phi), 0.0) * undamped
+
+
+# --- an impact against the buildings' own forces ----------------------------
+
+_OPPOSED_SCALE = 1e-3
+_OPPOSED_GRID = np.linspace(0.0, math.asinh(1e6 / _OPPOSED_SCALE), 193)
+"""asinh(phi / 1e-3) on which the opposed peak-force ratio is tabulated: linear
+in phi near 0, logarithmic beyond (the ratio falls slowly, as a power of phi,
+for a large phi), phi up to 1e6."""
+
+
+@njit(cache=True)
+def _opposed_peak(model, damping_ratio, opposing_force, steps_per_unit):
+    """Peak of F_c for x'' = -(F_c(x, x') + f0), x(0) = 0, x'(0) = 1: two
+    masses of reduced mass 1 meeting at unit speed under beta = 1 (k = 1 for
+    ``linear``) against a constant force f0. Classical RK4, stopped at the
+    largest penetration (F_c only falls after it). Plain loops: tiny sizes."""
+    time_scale = 1.0 / (1.0 + opposing_force)  # the impact lasts about this long
+    h = time_scale / steps_per_unit
+    x, rate, peak = 0.0, 1.0, 0.0
+    for _ in range(100 * steps_per_unit):
+        k1x, k1v = rate, -(contact_force(model, x, rate, 1.0, damping_ratio, 1.0, 1.0) + opposing_force)
+        x2, v2 = x + 0.5 * h * k1x, rate + 0.5 * h * k1v
+        k2x, k2v = v2, -(contact_force(model, x2, v2, 1.0, damping_ratio, 1.0, 1.0) + opposing_force)
+        x3, v3 = x + 0.5 * h * k2x, rate + 0.5 * h * k2v
+        k3x, k3v = v3, -(contact_force(model, x3, v3, 1.0, damping_ratio, 1.0, 1.0) + opposing_force)
+        x4, v4 = x + h * k3x, rate + h * k3v
+        k4x, k4v = v4, -(contact_force(model, x4, v4, 1.0, damping_ratio, 1.0, 1.0) + opposing_force)
+        x += h * (k1x + 2.0 * k2x + 2.0 * k3x + k4x) / 6.0
+        rate += h * (k1v + 2.0 * k2v + 2.0 * k3v + k4v) / 6.0
+        peak = max(peak, contact_force(model, x, rate, 1.0, damping_ratio, 1.0, 1.0))
+        if rate <= 0.0:
+            break
+    return peak
+
+
+@lru_cache(maxsize=256)
+def _opposed_table(model: str, restitution: float) -> np.ndarray:
+    contact = Contact(gap=0.0, stiffness=1.0, restitution=restitution, model=model)
+    unit = undamped_peak_force(contact, 1.0, 1.0)
+    ratios = np.empty(_OPPOSED_GRID.size)
+    for i, phi in enumerate(_OPPOSED_SCALE * np.sinh(_OPPOSED_GRID)):
+        ratios[i] = _opposed_peak(contact.model_code, contact.damping_ratio(), phi * unit, 1000) / unit
+    ratios.setflags(write=False)
+    return ratios
+
+
+def opposed_peak_force_ratio(model: str, restitution: float, phi):
+    """Peak force of one impact against a constant opposing force, over
+    ``undamped_peak_force`` [-].
+
+    During an impact (milliseconds) the storeys' restoring and damping forces
+    hardly change, so they act on the colliding floors as a constant force
+    f0 opposing the approach. With phi = f0 / F_H(v), F_H the undamped
+    (Hertz) peak, the law stays self-similar: the ratio depends on the law,
+    the restitution and phi alone. phi = 0 is :func:`peak_force_ratio`; the
+    ratio falls as phi grows (the approach is braked before it compresses the
+    contact), as phi^-1.5 for a large phi. Tabulated once per law and
+    restitution (a few ms), interpolated linearly in phi / (1 + phi).
+
+    Parameters
+    ----------
+    model : str
+        One of ``CONTACT_MODELS``.
+    restitution : float
+    phi : array_like
+        Opposing force over the undamped peak force, >= 0 [-].
+    """
+    phi = np.asarray(phi, dtype=float)
+    if np.any(phi < 0.0) or not np.all(np.isfinite(phi)):
+        raise CaseError("phi", "must be finite numbers >= 0 (a force opposing the approach)")
+    return np.interp(np.arcsinh(phi / _OPPOSED_SCALE), _OPPOSED_GRID, _opposed_table(model, float(restitution)))

@@ -133,3 +133,75 @@ def test_impact_peak_force_matches_a_simulated_impact(model, velocity, restituti
     history, _ = single_impact(restitution, velocity, model, stiffness=stiffness)
     contact = Contact(gap=0.0, stiffness=stiffness, restitution=restitution, model=model)
     assert history.summary["force_max"] == pytest.approx(impact_peak_force(contact, velocity, REDUCED_MASS), rel=2e-3)
+
+
+@pytest.mark.parametrize("phi", [0.02, 0.1, 0.5, 3.0, 40.0])
+@pytest.mark.parametrize("model, restitution", [("jankowski", 0.65), ("jankowski", 0.4), ("hertz", 1.0), ("hertzdamp", 0.6), ("linear", 0.7)])
+def test_impact_against_a_constant_force_matches_scipy(model, restitution, phi):
+    """m delta'' = -F_c(delta, delta') - f0 from delta = 0, delta' = v, by
+    solve_ivp at tight tolerance: the peak of F_c against the tabulated
+    ratio, with f0 = phi F_H(v)."""
+    from scipy.integrate import solve_ivp
+
+    from pounding.contact import impact_peak_force, undamped_peak_force
+
+    stiffness = BETA if model != "linear" else 5e7
+    contact = Contact(gap=0.0, stiffness=stiffness, restitution=restitution, model=model)
+    velocity = 0.3
+    opposing = phi * undamped_peak_force(contact, velocity, REDUCED_MASS)
+    code, xi = contact.model_code, contact.damping_ratio()
+
+    def force(y):
+        return contact_force(code, max(y[0], 0.0), y[1], stiffness, xi, REDUCED_MASS, velocity)
+
+    def rhs(_t, y):
+        return [y[1], -(force(y) + opposing) / REDUCED_MASS]
+
+    def turned(_t, y):
+        return y[1]
+
+    turned.terminal, turned.direction = True, -1
+    duration = 20 * hertz_peak_penetration(velocity, BETA, REDUCED_MASS) / velocity
+    solution = solve_ivp(rhs, (0, duration), [0.0, velocity], method="DOP853", rtol=1e-11, atol=[1e-15, 1e-13],
+                         events=turned, max_step=duration / (2000 * (1 + phi)))
+    peak = max(force(y) for y in solution.y.T)
+    assert impact_peak_force(contact, velocity, REDUCED_MASS, opposing) == pytest.approx(peak, rel=3e-3)
+
+
+@pytest.mark.parametrize("model, restitution", [("jankowski", 0.65), ("hertzdamp", 0.6), ("linear", 0.7)])
+def test_no_opposing_force_is_the_free_impact(model, restitution):
+    from pounding.contact import opposed_peak_force_ratio, peak_force_ratio
+
+    assert opposed_peak_force_ratio(model, restitution, 0.0) == pytest.approx(peak_force_ratio(model, restitution), rel=1e-4)
+
+
+def test_opposing_force_is_validated():
+    from pounding.contact import impact_peak_force
+    from pounding.errors import CaseError
+
+    with pytest.raises(CaseError, match="opposing_force"):
+        impact_peak_force(Contact(gap=0.0, stiffness=BETA), 0.3, REDUCED_MASS, -1.0)
+
+
+def test_restoring_forces_brake_an_impact_of_two_buildings():
+    """Two elastic one-storey buildings (1.2 s and 0.4 s) meet 6 cm apart:
+    their springs pull both floors back during the impact, a force of
+    m (k1 x1 / m1 - k2 x2 / m2) on the relative motion. The production
+    integrator's peak force matches the impact against that constant force
+    and is clearly below the free masses' one."""
+    from pounding.contact import impact_peak_force
+
+    def building(mass, period):
+        return Building((Storey(mass, mass * (2 * np.pi / period) ** 2, BoucWen(alpha=1.0)),), damping_ratio=0.0)
+
+    gap, velocity = 0.06, 0.3
+    contact = Contact(gap=gap, stiffness=BETA, restitution=0.65)
+    case = Case(Excitation(KanaiTajimi(0.0, 10.0, 0.3), 1.0, time_step=1e-3), (building(M1, 1.2), building(M2, 0.4)), contact)
+    x1, x2 = 0.05, -0.01 - 1e-9  # just short of contact
+    state = np.array([x1, x2, 0.6 * velocity, -0.4 * velocity, 0.0, 0.0])
+    history = integrate(case, np.zeros(31), 1e-3, initial_state=state, settings=Settings(tolerance=1e-10))
+    k1, k2 = (b.storeys[0].stiffness for b in case.buildings)
+    opposing = REDUCED_MASS * (k1 * x1 / M1 - k2 * x2 / M2)
+    simulated = history.summary["force_max"]
+    assert simulated == pytest.approx(impact_peak_force(contact, velocity, REDUCED_MASS, opposing), rel=0.01)
+    assert simulated < 0.95 * impact_peak_force(contact, velocity, REDUCED_MASS)
