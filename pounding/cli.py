@@ -226,6 +226,7 @@ def _estimate(args) -> int:
     print(f"  expected extreme force    {_format_force(result.force_expected)}")
     print(f"  expected peak impact v    {result.relative_velocity_expected:.4f} m/s")
     print(f"  expected impacts          {result.impacts_expected:.2f}")
+    print(f"  force braking an impact   {_format_force(result.opposing_force)}   (the buildings' own, at the gap)")
     print(f"  pounding probability      {100 * result.pounding_probability:.1f} %")
     print(f"  gap for {100 * result.target_probability:g} % no pounding  {100 * result.required_gap:.2f} cm"
           f"   (SRSS {100 * rules['srss']:.2f} cm, ABS {100 * rules['abs']:.2f} cm, DDC {100 * rules['ddc']:.2f} cm)")

@@ -36,7 +36,7 @@ def _monte_carlo(case, seed=31):
 )
 def test_recommended_estimate_within_ten_percent(case):
     """Where the gap is below sigma_X the recommended estimate was measured
-    within 10 % on 20 of 25 grid cases; these are among them."""
+    within 10 % on 19 of 25 grid cases; these are among them."""
     mean, error = _monte_carlo(case)
     result = estimate(case)
     assert result.sigma_relative_displacement > case.contact.gap
@@ -55,7 +55,7 @@ def test_recommended_beats_the_paper_where_the_paper_is_weakest():
 
 
 def test_moderately_yielding_pairs_within_their_documented_bound():
-    """The documented unsafe side: both buildings yielding (-10 % to -14 %)."""
+    """The documented unsafe side: both buildings yielding (-10 % to -15 %)."""
     case = load_case("section6-T2-0.8")
     mean, error = _monte_carlo(case)
     assert abs(estimate(case).force_expected - mean) < 0.18 * mean + 3 * error
@@ -87,7 +87,7 @@ def test_the_measured_accuracy_stated_is_that_of_the_regime():
     """Frequent pounding (gap below sigma_X): the grid's range; above sigma_X:
     the rare-pounding range of an elastic or a yielding pair."""
     frequent = estimate(load_case("section5-T2-0.4"))
-    assert "-14 % to +14 %" in frequent.measured_accuracy
+    assert "-15 % to +10 %" in frequent.measured_accuracy
     assert frequent.sigma_relative_displacement > frequent.case.contact.gap
     elastic = _vary(load_case("section5-T2-0.4"), elastic=True)
     sigma = estimate(elastic).sigma_relative_displacement
@@ -120,3 +120,22 @@ def test_required_gap_is_on_the_safe_side_for_elastic_pairs(periods):
     records = 1500
     fraction = simulate(at_gap, records=records, seed=43).pounding_fraction
     assert fraction <= 0.05 + 2.5 * math.sqrt(0.05 * 0.95 / records)
+
+
+def test_peak_force_given_the_velocity_includes_the_buildings_forces():
+    """Far from the mean position (an elastic pair, gap 1.5 sigma_X) the
+    buildings' restoring forces brake every impact. Record by record, the
+    simulated largest force against the law's peak for the record's largest
+    approach velocity: with the estimator's opposing force the two agree on
+    average; for free masses the law overstates the force."""
+    from pounding.contact import impact_peak_force
+
+    case = _vary(load_case("section5-T2-0.4"), elastic=True, gap=0.06)
+    result = estimate(case)
+    simulated = simulate(case, records=RECORDS, seed=33)
+    pounded = simulated.impact_velocity_max > 0
+    velocity, force = simulated.impact_velocity_max[pounded], simulated.force_max[pounded]
+    braked = impact_peak_force(case.contact, velocity, case.reduced_mass, result.opposing_force)
+    free = impact_peak_force(case.contact, velocity, case.reduced_mass)
+    assert np.mean(force / braked) == pytest.approx(1.0, abs=0.02)
+    assert np.mean(force / free) < 0.96
