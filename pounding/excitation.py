@@ -165,6 +165,13 @@ class Excitation:
     cutoff_frequency : float
         Highest frequency represented in the records [rad/s]; must lie below
         the Nyquist frequency pi / time_step.
+    synthesis_factor : int
+        The synthesis FFT spans this many times the shortest power of two of
+        samples that holds the record, and the record is its start. 1 (the
+        default) gives records periodic over about their duration, which carry
+        nothing below about pi / duration [rad/s]; a larger factor represents
+        the spectrum down to lower frequencies (a convergence check: see
+        docs/estimator.md, "The records' lowest frequencies"). 1 to 64.
     """
 
     spectrum: KanaiTajimi
@@ -172,8 +179,12 @@ class Excitation:
     envelope: ShinozukaSato | None = None
     time_step: float = 0.005
     cutoff_frequency: float = 2.0 * math.pi * 25.0
+    synthesis_factor: int = 1
 
     def __post_init__(self):
+        factor = self.synthesis_factor
+        if not (isinstance(factor, int) and not isinstance(factor, bool) and 1 <= factor <= 64):
+            raise CaseError("synthesis_factor", f"must be an integer from 1 to 64, got {factor!r}")
         _positive("duration", self.duration)
         _positive("time_step", self.time_step)
         _positive("cutoff_frequency", self.cutoff_frequency)
@@ -197,9 +208,10 @@ class Excitation:
 
     @property
     def fft_length(self) -> int:
-        """Length of the synthesis FFT: a power of two >= n_samples, so the
-        record's period 2 pi / d_omega is at least its duration."""
-        return 1 << (self.n_samples - 1).bit_length()
+        """Length of the synthesis FFT: ``synthesis_factor`` times a power of
+        two >= n_samples, so the synthesis period 2 pi / d_omega is at least
+        ``synthesis_factor`` times the record's duration."""
+        return self.synthesis_factor * (1 << (self.n_samples - 1).bit_length())
 
     def times(self) -> np.ndarray:
         """Sample times [s]."""

@@ -97,3 +97,39 @@ def test_record_rng_is_a_child_of_the_seed_sequence():
     assert np.random.default_rng(child).random() == record_rng(11, 3).random()
     single = ground_acceleration(Excitation(KANAI_TAJIMI_SI, 5.0), record_rng(11, 3))
     assert single.shape == (Excitation(KANAI_TAJIMI_SI, 5.0).n_samples,)
+
+
+@pytest.mark.parametrize("factor", [1, 8])
+def test_a_larger_synthesis_factor_keeps_the_lowest_frequencies(factor):
+    """The mean of a record over its duration T has variance
+    int S(w) (sin(w T / 2) / (w T / 2))^2 dw, most of it from w < 2 pi / T.
+    Records periodic over about T (factor 1) lose that band; with factor 8
+    the synthesis grid is 8 times finer and the variance is kept."""
+    from pounding.excitation import _one_sided_weights
+
+    excitation = Excitation(KANAI_TAJIMI_SI, 20.0, synthesis_factor=factor)
+    duration = (excitation.n_samples - 1) * excitation.time_step
+
+    def kernel(w):
+        return np.sinc(w * duration / (2 * np.pi)) ** 2  # numpy's sinc is sin(pi x) / (pi x)
+
+    expected, _ = integrate.quad(lambda w: 2 * KANAI_TAJIMI_SI.psd(w) * kernel(w), 0.0, 50.0, limit=400, points=[2 * np.pi / duration])
+    # What the synthesis grid itself represents (each frequency's variance times the kernel):
+    omega = excitation.synthesis_frequencies()
+    represented = np.sum(_one_sided_weights(excitation) * kernel(omega))
+    records = ground_accelerations(excitation, seed=3, indices=range(400))
+    # The trapezoid mean over the record, as its integral over [0, T] / T.
+    means = np.trapezoid(records, dx=excitation.time_step, axis=1) / duration
+    assert np.var(means) == pytest.approx(represented, rel=0.25)
+    if factor == 1:
+        assert represented < 0.1 * expected
+    else:
+        # Short by about 1 / factor: the zero-frequency bin is left out.
+        assert expected * (1 - 1.5 / factor) < represented < expected
+
+
+def test_synthesis_factor_is_validated():
+    from pounding.errors import CaseError
+
+    with pytest.raises(CaseError, match="synthesis_factor"):
+        Excitation(KANAI_TAJIMI_SI, 20.0, synthesis_factor=0)
