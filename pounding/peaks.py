@@ -268,12 +268,28 @@ def _bedrock(A, stationary, times, forcing):
 def _switched_on(model: StateSpace, times):
     """A stationary ground motion acting from ``times[0]`` on buildings at rest
     (the filter already stationary): a time-invariant system, so
-    P(t) = P_s + exp(A t) (P_0 - P_s) exp(A^T t), stepped with one propagator
-    per distinct step."""
+    P(t) = P_s + exp(A t) (P_0 - P_s) exp(A^T t).
+
+    With A = V diag(l) V^-1 this is V (D * exp((l_i + l_j) t)) V^T with
+    D = V^-1 (P_0 - P_s) V^-T: every instant at once. An ill-conditioned
+    eigenvector basis (a nearly defective A) falls back to stepping with one
+    propagator per distinct step."""
     A, stationary = model.matrix, model.covariance()
     f = model.filter_states
     deviation = -stationary.copy()
     deviation[f, f] = 0.0  # the filter starts in its stationary state
+    elapsed = times - times[0]
+    values, vectors = np.linalg.eig(A)
+    if np.linalg.cond(vectors) < 1e6:
+        inverse = np.linalg.inv(vectors)
+        modal = inverse @ deviation @ inverse.T
+        growth = np.exp(np.add.outer(values, values)[None, :, :] * elapsed[:, None, None])
+        return stationary + (vectors @ (modal * growth) @ vectors.T).real
+    return _stepped(A, stationary, deviation, times)
+
+
+def _stepped(A, stationary, deviation, times):
+    """P_s + exp(A t) deviation exp(A^T t), stepped from ``times[0]``."""
     out = np.empty((times.size,) + A.shape)
     out[0] = stationary + deviation
     steps = np.diff(times)

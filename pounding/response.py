@@ -383,7 +383,7 @@ def contact_covariance_history(case, linearized=None, times=None, modulation: st
         model = pair_state_space(case, _linearized(case, linearized))
     outputs = contact_output_matrix(case, model)
     history = time_varying_covariance(model, case.excitation.envelope, times, modulation=modulation)
-    return np.einsum("ij,tjk,lk->til", outputs, history, outputs)
+    return outputs @ history @ outputs.T
 
 
 def spectral_moments_relative_displacement(case, linearized=None, orders=(0, 1, 2)) -> np.ndarray:

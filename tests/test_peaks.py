@@ -197,3 +197,27 @@ def test_eq28_equivalent_process_is_close_to_the_exact_one():
     shortcut = equivalent_stationary(envelope_variance(case.excitation.envelope, times, stationary), times)
     assert shortcut[0] == pytest.approx(exact[0], rel=0.02)
     assert shortcut[1] == pytest.approx(exact[1], rel=0.02)
+
+
+@pytest.mark.parametrize("preset", ["section5-T2-0.4", "section6-T2-0.8"])
+def test_switched_on_covariance_matches_direct_integration(preset):
+    """A stationary motion switched on at t = 0 on buildings at rest (the
+    filter already stationary): the closed form by eigenvectors, and the
+    stepped one it falls back to, against solve_ivp of dP/dt = A P + P A^T + Q."""
+    from pounding.linearization.lyapunov import lyapunov_covariance
+    from pounding.peaks import _stepped
+
+    _, model = _stationary_pair(preset)
+    A, Q, n, f = model.matrix, model.noise_covariance, model.size, model.filter_states
+    initial = np.zeros((n, n))
+    initial[f, f] = lyapunov_covariance(A[f, f], Q[f, f])
+    times = np.linspace(0.0, 20.0, 81)
+    check = times[::10]
+    direct = solve_ivp(lambda t, p: (A @ p.reshape(n, n) + p.reshape(n, n) @ A.T + Q).ravel(), (0.0, 20.0), initial.ravel(),
+                       t_eval=check, method="DOP853", rtol=1e-10, atol=1e-18).y.T.reshape(-1, n, n)
+    stationary = model.covariance()
+    scale = np.sqrt(np.outer(np.diag(stationary), np.diag(stationary)))
+    closed = time_varying_covariance(model, None, times, modulation="ground")
+    stepped = _stepped(A, stationary, initial - stationary, times)
+    np.testing.assert_allclose(closed[::10] / scale, direct / scale, atol=1e-6)
+    np.testing.assert_allclose(stepped[::10] / scale, direct / scale, atol=1e-6)
