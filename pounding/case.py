@@ -73,7 +73,7 @@ class Case:
 # --- loading -----------------------------------------------------------------
 
 _TOP_KEYS = {"units", "name", "description", "excitation", "buildings", "contact"}
-_EXCITATION_KEYS = {"spectrum", "G0", "omega_g", "xi_g", "omega_f", "xi_f", "duration", "envelope", "B1", "B2", "time_step", "cutoff_frequency"}
+_EXCITATION_KEYS = {"spectrum", "G0", "omega_g", "xi_g", "omega_f", "xi_f", "duration", "envelope", "B1", "B2", "time_step", "cutoff_frequency", "synthesis_factor"}
 _BUILDING_KEYS = {"damping_ratio", "storeys"}
 _STOREY_KEYS = {"mass", "stiffness", "period", "damping", "bouc_wen"}
 _BOUC_WEN_KEYS = {"alpha", "A", "beta", "gamma", "n"}
@@ -136,6 +136,8 @@ def _excitation(table, units: UnitSystem) -> Excitation:
     else:
         envelope = _build(where, ShinozukaSato, _number(table, "B1", where, 0.085), _number(table, "B2", where, 0.17))
     optional = {key: _number(table, key, where) for key in ("time_step", "cutoff_frequency") if key in table}
+    if "synthesis_factor" in table:
+        optional["synthesis_factor"] = table["synthesis_factor"]  # an integer; Excitation checks it
     return _build(where, Excitation, spectrum, _number(table, "duration", where), envelope, **optional)
 
 

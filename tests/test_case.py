@@ -143,6 +143,8 @@ def _bad(path: list, value):
         (["excitation", "spectrum"], "white", "excitation.spectrum"),
         (["excitation", "duration"], -5.0, "excitation.duration"),
         (["excitation", "xi_g"], "high", "excitation.xi_g"),
+        (["excitation", "synthesis_factor"], 2.5, "excitation.synthesis_factor"),
+        (["excitation", "synthesis_factor"], 0, "excitation.synthesis_factor"),
         (["contact", "levels"], [2, 1], "contact.levels"),
         (["contact", "model"], "rubber", "contact.model"),
         (["units"], "furlongs", "units"),
@@ -188,3 +190,12 @@ def test_case_file_round_trip(tmp_path):
     broken.write_text("units = ")
     with pytest.raises(CaseError, match="not valid TOML"):
         load_case(broken)
+
+
+def test_synthesis_factor_is_read():
+    data = tomllib.loads(PAPER_UNITS)
+    default = case_from_dict(data).excitation
+    data["excitation"]["synthesis_factor"] = 4
+    longer = case_from_dict(data).excitation
+    assert (default.synthesis_factor, longer.synthesis_factor) == (1, 4)
+    assert longer.fft_length == 4 * default.fft_length
