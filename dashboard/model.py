@@ -199,7 +199,7 @@ class PoundingModel(param.Parameterized):
         case = load_case(self.preset)
         self._description = case.description
         excitation = case.excitation
-        extra = {"time_step": excitation.time_step, "cutoff_frequency": excitation.cutoff_frequency}
+        extra = {"time_step": excitation.time_step, "cutoff_frequency": excitation.cutoff_frequency, "synthesis_factor": excitation.synthesis_factor}
         if isinstance(excitation.spectrum, CloughPenzien):
             extra |= {"spectrum": "clough-penzien", "omega_f": excitation.spectrum.omega_f, "xi_f": excitation.spectrum.xi_f}
         self._extra_excitation = extra
