@@ -188,7 +188,6 @@ def peak_force_ratio(model: str, restitution: float) -> float:
     alone. It is found by running the time-history kernel on two free unit
     masses meeting at unit speed (about 0.1 ms).
     """
-
     from . import integrator as kernel  # imports this module: import late
 
     contact = Contact(gap=0.0, stiffness=1.0, restitution=restitution, model=model)
@@ -278,8 +277,10 @@ def opposed_peak_force_ratio(model: str, restitution: float, phi):
     (Hertz) peak, the law stays self-similar: the ratio depends on the law,
     the restitution and phi alone. phi = 0 is :func:`peak_force_ratio`; the
     ratio falls as phi grows (the approach is braked before it compresses the
-    contact), as phi^-1.5 for a large phi. Tabulated once per law and
-    restitution (a few ms), interpolated linearly in phi / (1 + phi).
+    contact): as phi^-1.5 for Hertz, more slowly for the damped laws, whose
+    damping force acts from the first touch. Tabulated once per law and
+    restitution (about 10 ms) for phi up to 1e6, interpolated linearly in
+    asinh(phi / 1e-3).
 
     Parameters
     ----------
