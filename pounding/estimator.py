@@ -382,20 +382,6 @@ def _merged(
     return _Crossings(np.ascontiguousarray(x), np.ascontiguousarray(v), np.ascontiguousarray(w), bandwidth, frequency_squared)
 
 
-def _expected_powers_of_maximum(
-    crossings: _Crossings, gaps: np.ndarray, powers: tuple[float, ...], points: int = 121
-) -> np.ndarray:
-    """E[V_max^p] for each gap and power, V_max = 0 without impact: the
-    integral of P(V_max^p > s) = 1 - exp(-Lambda(s^(1/p))) over s >= 0, on a
-    uniform grid in s (smooth there, unlike p v^(p-1) at v = 0: 121 points
-    give 2e-5, 81 points 1e-4). Shape (powers, gaps)."""
-    out = []
-    for power in powers:
-        s = np.linspace(0.0, (_U_MAX * crossings.sigma_v.max()) ** power, points)
-        out.append(np.trapezoid(-np.expm1(-crossings.intensity(gaps, s ** (1.0 / power))), s, axis=-1))
-    return np.array(out)
-
-
 def _opposing_forces(crossings: _Crossings, gaps: np.ndarray, reduced_mass: float) -> np.ndarray:
     """f0 = m E[-X'' | X = d] = m (sigma_V / sigma_X)^2 d [N] for each gap: the
     buildings' restoring and damping forces at the gap, averaged (for a
@@ -404,19 +390,28 @@ def _opposing_forces(crossings: _Crossings, gaps: np.ndarray, reduced_mass: floa
     return reduced_mass * crossings.frequency_squared * np.asarray(gaps, dtype=float)
 
 
+def _expected_maximum(crossings: _Crossings, gaps: np.ndarray, size, power: float, points: int = 121) -> np.ndarray:
+    """E[size(V_max)] for each gap, V_max = 0 without impact and ``size`` an
+    increasing function of the speed with size(0) = 0 (``size(v)`` gets v of
+    shape (1, points) and may broadcast it against the gaps):
+    int P(V_max > v) d size(v), P(V_max > v) = 1 - exp(-Lambda(v)).
+
+    On a grid uniform in v^power, power the growth of ``size`` (smooth there,
+    unlike p v^(p-1) at v = 0: 121 points give 2e-5, 81 points 1e-4)."""
+    velocities = np.linspace(0.0, (_U_MAX * crossings.sigma_v.max()) ** power, points) ** (1.0 / power)
+    exceedance = -np.expm1(-crossings.intensity(gaps, velocities))
+    return np.trapezoid(exceedance, np.broadcast_to(size(velocities[None, :]), exceedance.shape), axis=-1)
+
+
 def _expected_force_maximum(
     crossings: _Crossings, gaps: np.ndarray, contact: Contact, reduced_mass: float, points: int = 121
 ) -> np.ndarray:
-    """E[F_max] [N] for each gap, F_max = 0 without impact: with F(v) the
-    peak force of an impact at speed v against the gap's opposing force
-    (increasing in v), E[F_max] = int P(V_max > v) dF(v), P(V_max > v) =
-    1 - exp(-Lambda(v)). On a grid uniform in v^p, p the law's exponent, as
-    :func:`_expected_powers_of_maximum`."""
-    power = _exponent(contact)
-    velocities = np.linspace(0.0, (_U_MAX * crossings.sigma_v.max()) ** power, points) ** (1.0 / power)
-    exceedance = -np.expm1(-crossings.intensity(gaps, velocities))
-    forces = impact_peak_force(contact, velocities[None, :], reduced_mass, _opposing_forces(crossings, gaps, reduced_mass)[:, None])
-    return np.trapezoid(exceedance, forces, axis=-1)
+    """E[F_max] [N] for each gap, F(v) the peak force of an impact at speed v
+    against the gap's opposing force (increasing in v, as v^p)."""
+    opposing = _opposing_forces(crossings, gaps, reduced_mass)[:, None]
+    return _expected_maximum(
+        crossings, gaps, lambda v: impact_peak_force(contact, v, reduced_mass, opposing), _exponent(contact), points
+    )
 
 
 def _required_gap(crossings: _Crossings, target_probability: float) -> float:
@@ -585,7 +580,7 @@ def estimate(
     gap = np.array([contact.gap])
     impacts = float(crossings.intensity(gap, np.zeros(1))[0, 0])
     required_gap = _required_gap(crossings, target_probability)
-    (velocity,) = _expected_powers_of_maximum(crossings, gap, (1.0,))[:, 0]
+    (velocity,) = _expected_maximum(crossings, gap, lambda v: v, 1.0)
     return Estimate(
         case=case,
         force_expected=float(_expected_force_maximum(crossings, gap, contact, case.reduced_mass)[0]),
