@@ -30,6 +30,7 @@ from .linearization import (
     linearize_pair,
     pair_state_space,
 )
+from .linearization.residual import residual_response
 
 __all__ = [
     "OUTPUTS",
@@ -43,6 +44,7 @@ __all__ = [
     "response",
     "response_frequency",
     "response_lyapunov",
+    "response_with_residual",
 ]
 
 OUTPUTS = ("x1", "x2", "v1", "v2", "a1", "a2")
@@ -193,6 +195,31 @@ def response_lyapunov(case, linearized=None, model: StateSpace | None = None) ->
         model = pair_state_space(case, _linearized(case, linearized))
     outputs = contact_output_matrix(case, model)
     return ContactResponse(case.contact.levels, outputs @ model.covariance() @ outputs.T, "lyapunov")
+
+
+def response_with_residual(case, linearized=None, model: StateSpace | None = None, linear: ContactResponse | None = None) -> ContactResponse:
+    """Contact-floor response of the linearized pair plus its response to the
+    linearization residual of the yielding storeys, an input independent of
+    the ground motion to second order (one pass, see
+    :mod:`pounding.linearization.residual`). Equal to :func:`response_lyapunov`
+    for elastic buildings.
+
+    Parameters
+    ----------
+    case : Case
+    linearized : tuple of two LinearizedBuilding, optional
+    model : StateSpace, optional
+        The pair's :func:`~pounding.linearization.pair_state_space`, if built already.
+    linear : ContactResponse, optional
+        :func:`response_lyapunov` of the same pair, if computed already.
+    """
+    linearized = _linearized(case, linearized)
+    if model is None:
+        model = pair_state_space(case, linearized)
+    if linear is None:
+        linear = response_lyapunov(case, linearized, model)
+    residual = residual_response(model, linearized, contact_output_matrix(case, model))
+    return ContactResponse(case.contact.levels, linear.covariance + residual, "lyapunov+residual")
 
 
 def frequency_response(linearized: LinearizedBuilding, omega) -> np.ndarray:
