@@ -9,7 +9,7 @@ braking force at the gap (``Estimate.opposing_force``):
   F(V_max), V_max each record's largest simulated approach speed. It tests the
   impact model alone, on the simulated speeds;
 - largest speed: the estimate against that same mean. It tests the model of
-  the largest approach speed (crossings of the gap, mirror returns, clumps);
+  the largest approach speed (crossings of the gap, time cut, clumps);
 - the two multiply to the estimate's error against Monte Carlo;
 - the impact-force column without the braking force, for free masses, shows
   what the braking force corrects.
@@ -20,16 +20,18 @@ largest speed at which the free relative motion crosses the gap upward in
 each record. "impacts" is the simulated E[V_max^p] (p the law's exponent)
 against the free motion's, what the impacts themselves add; "Gaussian" is
 the free motion's against Rice's count of the linearized pair's crossings
-(with Vanmarcke's clumps and no mirror returns), what the Gaussian
+(with Vanmarcke's clumps and no time cut), what the Gaussian
 linearized model misses of the free motion.
 
-With ``--time-cut`` it compares, on the simulated largest speed
-(E[V_max^1.2]), the estimator's count (mirror returns) with the time cut:
-Rice's rate per unit time below the gap, nu / Phi(d / sigma_X), with the clumps.
+With ``--mirror`` it compares, on the simulated largest speed
+(E[V_max^1.2]), the estimator's count (the time cut: Rice's rate per unit
+time below the gap, nu / Phi(d / sigma_X), with the clumps) with the count it
+replaced, Zhuravlev's mirror returns (impacts at envelope a recurring at
+omega / (2 (pi - arccos(d / a))), with the clumps).
 
-    python3 docs/error_decomposition.py                 # about 1 min on 2 cores
-    python3 docs/error_decomposition.py --free-motion   # about 6 min
-    python3 docs/error_decomposition.py --time-cut      # about 1 min
+    python3 docs/error_decomposition.py                 # about 30 s on 2 cores
+    python3 docs/error_decomposition.py --free-motion   # about 1 min
+    python3 docs/error_decomposition.py --mirror        # about 30 s
 """
 
 from __future__ import annotations
@@ -70,12 +72,10 @@ def free_motion_speeds(case) -> np.ndarray:
     return speeds
 
 
-def rice_expected_power(result, power: float, points: int = 400, time_cut: bool = False) -> float:
-    """E[V_max^p] from Rice's rate of upcrossings of the gap faster than v,
-    sigma_V / (2 pi sigma_X) exp(-(u^2 + rho^2) / 2), with Vanmarcke's clumps
-    and no mirror returns (``time_cut``: divided by P(X < d) = Phi(u)), over
-    the linearized pair's sigma history. Only for this diagnosis: the
-    estimator counts the mirror returns."""
+def _expected_power(result, power: float, rate, points: int = 400) -> float:
+    """E[V_max^p] from an impact rate ``rate(u, rho)`` (per unit time, in units of
+    sigma_V / sigma_X, for crossings faster than rho sigma_V at u = d / sigma_X)
+    with Vanmarcke's clumps, over the pair's sigma history."""
     crossings, gap = result.crossings, result.case.contact.gap
     clumping = math.sqrt(math.pi / 2.0) * crossings.bandwidth**1.2
     speeds = np.linspace(0.0, 10.0 * crossings.sigma_v.max(), points)
@@ -85,9 +85,28 @@ def rice_expected_power(result, power: float, points: int = 400, time_cut: bool 
         r = np.hypot(u, rho)
         with np.errstate(invalid="ignore", divide="ignore"):
             clumps = np.where(r > 1e-9, np.minimum(1.0, -np.expm1(-clumping * r) / -np.expm1(-0.5 * r * r)), 1.0)
-        below = 0.5 * math.erfc(-u / math.sqrt(2.0)) if time_cut else 1.0
-        expected += weight * sigma_v / (2 * math.pi * sigma_x * below) * np.exp(-0.5 * (u * u + rho * rho)) * clumps
+        expected += weight * sigma_v / sigma_x * rate(u, rho) * clumps
     return float(np.trapezoid(-np.expm1(-expected), speeds**power))
+
+
+def rice_expected_power(result, power: float) -> float:
+    """Rice's count of the free motion's crossings, no returns after an impact:
+    exp(-(u^2 + rho^2) / 2) / (2 pi). Only for this diagnosis."""
+    return _expected_power(result, power, lambda u, rho: np.exp(-0.5 * (u * u + rho * rho)) / (2 * math.pi))
+
+
+def mirror_expected_power(result, power: float) -> float:
+    """The mirror returns (the estimator's count before the time cut):
+    exp(-u^2 / 2) G(u, rho), G(u, rho) = int_rho^inf R exp(-R^2 / 2) / (2 (pi - atan2(R, u))) dR,
+    the Rayleigh envelope a = sqrt(d^2 + R^2 sigma_X^2) and the return rate at it. Only for this diagnosis."""
+    grid = np.linspace(0.0, 12.0, 4001)
+
+    def rate(u, rho):
+        integrand = grid * np.exp(-0.5 * grid**2) / (2.0 * (math.pi - np.arctan2(grid, u)))
+        tail = np.concatenate([np.cumsum((0.5 * (integrand[1:] + integrand[:-1]) * np.diff(grid))[::-1])[::-1], [0.0]])
+        return math.exp(-0.5 * u * u) * np.interp(rho, grid, tail)
+
+    return _expected_power(result, power, rate)
 
 
 def free_motion_table() -> None:
@@ -103,27 +122,27 @@ def free_motion_table() -> None:
               f"| {rice_expected_power(result, power) / free - 1:+.1%} | {result.force_expected / simulated.force_max_mean - 1:+.1%} |")
 
 
-def time_cut_table() -> None:
+def mirror_table() -> None:
     from pounding.estimator import _expected_maximum
 
-    print("| case | gap / sigma_X | largest speed, mirror (the estimator) | largest speed, time cut |")
+    print("| case | gap / sigma_X | largest speed, time cut (the estimator) | largest speed, mirror returns |")
     print("|---|---|---|---|")
     for case in accuracy_cases():
         result = estimate(case)
         power = 1.0 if case.contact.model == "linear" else 1.2
         simulated = np.mean(simulate(case, records=RECORDS, seed=SEED).impact_velocity_max ** power)
-        mirror = _expected_maximum(result.crossings, np.array([case.contact.gap]), lambda v: v**power, power)[0]
-        cut = rice_expected_power(result, power, time_cut=True)
-        print(f"| {case.name} | {case.contact.gap / result.sigma_relative_displacement:.2f} | {mirror / simulated - 1:+.1%} "
-              f"| {cut / simulated - 1:+.1%} |")
+        cut = _expected_maximum(result.crossings, np.array([case.contact.gap]), lambda v: v**power, power)[0]
+        mirror = mirror_expected_power(result, power)
+        print(f"| {case.name} | {case.contact.gap / result.sigma_relative_displacement:.2f} | {cut / simulated - 1:+.1%} "
+              f"| {mirror / simulated - 1:+.1%} |")
 
 
 def main() -> None:
     if "--free-motion" in sys.argv[1:]:
         free_motion_table()
         return
-    if "--time-cut" in sys.argv[1:]:
-        time_cut_table()
+    if "--mirror" in sys.argv[1:]:
+        mirror_table()
         return
     print("| case | gap / sigma_X | bandwidth q | impact force, free masses | impact force | largest speed | estimate |")
     print("|---|---|---|---|---|---|---|")

@@ -220,8 +220,11 @@ def _estimate(args) -> int:
     rules = result.separation_rules
     print(f"case                        {case.name} ({'stationary' if case.excitation.stationary else 'non-stationary'}, {case.excitation.duration:g} s)")
     print(f"gap                         {100 * case.contact.gap:.2f} cm")
-    print(f"sigma relative displacement {100 * result.sigma_relative_displacement:.3f} cm")
-    print(f"sigma relative velocity     {result.sigma_relative_velocity:.4f} m/s")
+    linearized = result.response
+    print(f"sigma relative displacement {100 * result.sigma_relative_displacement:.3f} cm   "
+          f"(linearized {100 * linearized.sigma_relative_displacement:.3f} cm, plus the residual's response)")
+    print(f"sigma relative velocity     {result.sigma_relative_velocity:.4f} m/s   "
+          f"(linearized {linearized.sigma_relative_velocity:.4f} m/s)")
     print("recommended (gap-aware)")
     print(f"  expected extreme force    {_format_force(result.force_expected)}")
     print(f"  expected peak impact v    {result.relative_velocity_expected:.4f} m/s")

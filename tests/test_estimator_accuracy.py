@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from pounding import load_case, simulate
-from pounding.estimator import estimate
+from pounding.estimator import ACCURACY_FREQUENT, estimate
 from pounding.validation import _mdof_case, _vary
 
 RECORDS = 200
@@ -24,24 +24,34 @@ def _monte_carlo(case, seed=31):
     "case",
     [
         load_case("section5-T2-0.4"),
+        load_case("section5-T2-0.8"),
+        load_case("section6-T2-0.4"),
         load_case("section5-T2-0.4-nonstationary"),
         load_case("section6-T2-0.4-nonstationary"),
         _vary(load_case("section5-T2-0.4"), restitution=0.4, name="e0.4"),
         _vary(load_case("section5-T2-0.4"), gap=0.05, name="gap 5 cm"),
         _vary(load_case("section5-T2-0.4"), g0=4.0, name="G0 x 4"),
-        _vary(load_case("section6-T2-0.6"), g0=10.0, restitution=0.4, name="s6 G0 x 10, e0.4"),
         _mdof_case(),
     ],
     ids=lambda case: case.name,
 )
 def test_recommended_estimate_within_ten_percent(case):
     """Where the gap is below sigma_X the recommended estimate was measured
-    within 10 % on 19 of 25 grid cases; these are among them."""
+    within 10 % on 21 of 26 grid cases; these are among them."""
     mean, error = _monte_carlo(case)
     result = estimate(case)
     assert result.sigma_relative_displacement > case.contact.gap
     assert not any("gap exceeds sigma_X" in warning for warning in result.warnings)
     assert abs(result.force_expected - mean) < 0.10 * mean + 3 * error
+
+
+def test_elastic_pair_far_from_the_mean_within_ten_percent():
+    """An exactly Gaussian relative motion at 1.5 sigma_X: the time cut counts
+    the impacts (documented +2.4 %; the mirror returns it replaced gave +13.6 %)."""
+    case = _vary(load_case("section5-T2-0.4"), elastic=True, gap=0.06)
+    result = simulate(case, records=600, seed=31)
+    estimated = estimate(case).force_expected
+    assert abs(estimated - result.force_max_mean) < 0.10 * result.force_max_mean + 3 * result.force_max_std_error
 
 
 def test_recommended_beats_the_paper_where_the_paper_is_weakest():
@@ -54,11 +64,14 @@ def test_recommended_beats_the_paper_where_the_paper_is_weakest():
     assert abs(result.force_expected / mean - 1) < 0.1
 
 
-def test_moderately_yielding_pairs_within_their_documented_bound():
-    """The documented unsafe side: both buildings yielding (-10 % to -15 %)."""
+def test_nearly_elastic_perfectly_plastic_frames_are_overestimated():
+    """The documented high side: the Section 6 frames (alpha = 0.02), where the
+    one-pass residual overshoots (+14 % for T2 = 0.8 s). Before the residual
+    the same case was 15 % low; it must now lie on the safe side."""
     case = load_case("section6-T2-0.8")
     mean, error = _monte_carlo(case)
-    assert abs(estimate(case).force_expected - mean) < 0.18 * mean + 3 * error
+    estimated = estimate(case).force_expected
+    assert mean - 3 * error < estimated < 1.20 * mean + 3 * error
 
 
 @pytest.mark.parametrize("gap_over_sigma", [2.0, 2.5, 3.0])
@@ -87,7 +100,7 @@ def test_the_measured_accuracy_stated_is_that_of_the_regime():
     """Frequent pounding (gap below sigma_X): the grid's range; above sigma_X:
     the rare-pounding range of an elastic or a yielding pair."""
     frequent = estimate(load_case("section5-T2-0.4"))
-    assert "-15 % to +10 %" in frequent.measured_accuracy
+    assert frequent.measured_accuracy == ACCURACY_FREQUENT["kanai-tajimi"]
     assert frequent.sigma_relative_displacement > frequent.case.contact.gap
     elastic = _vary(load_case("section5-T2-0.4"), elastic=True)
     sigma = estimate(elastic).sigma_relative_displacement
@@ -97,9 +110,9 @@ def test_the_measured_accuracy_stated_is_that_of_the_regime():
 
 
 def test_impacts_expected_tracks_the_simulated_count_when_pounding_is_frequent():
-    """The mirror argument doubles Rice's rate for a gap near the mean position:
-    the simulated count of impacts is then far above Rice's and near the estimate
-    (documented 8.8 against 10.6 for Section 5, T2 = 0.4 s)."""
+    """The time cut doubles Rice's rate at the mean position (impacts start only
+    from below the gap): the simulated count of impacts is then far above
+    Rice's and near the estimate (8.7 against 10.6 for Section 5, T2 = 0.4 s)."""
     case = load_case("section5-T2-0.4")
     result = estimate(case)
     simulated = simulate(case, records=RECORDS, seed=32).impacts_mean
@@ -150,20 +163,22 @@ def _clough_penzien(case):
 
 
 def test_plastic_drift_without_low_frequency_motion_is_flagged_and_real():
-    """With a Clough-Penzien spectrum the linearized yielding pair does not
-    drift; the simulated one does, and pounds at the gap the estimate gives
-    for 95 % no pounding far more often than 5 %. The estimate says so."""
+    """With a Clough-Penzien spectrum the linearized yielding pair drifts only
+    through the linearization's residual; the simulated one drifts further and
+    pounds at the gap the estimate gives for 95 % no pounding more often than
+    5 % (documented 10.6 % with 1,000 records). The estimate says so."""
     case = _clough_penzien(load_case("section5-T2-0.8"))
     result = estimate(case, target_probability=0.95)
-    assert any("plastic drift" in warning and "pounding simulate" in warning for warning in result.warnings)
+    assert any("drift" in warning and "pounding simulate" in warning for warning in result.warnings)
     assert "Clough-Penzien" in result.measured_accuracy
     at_gap = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=result.required_gap))
-    fraction = simulate(at_gap, records=400, seed=44).pounding_fraction
-    assert fraction > 0.12  # documented 0.27 with 1,000 records
+    records = 400
+    fraction = simulate(at_gap, records=records, seed=44).pounding_fraction
+    assert fraction > 0.05 + 2 * math.sqrt(0.05 * 0.95 / records)
 
 
 def test_elastic_pairs_get_no_drift_warning():
     case = _clough_penzien(_vary(load_case("section5-T2-0.4"), elastic=True))
     result = estimate(case)
-    assert not any("plastic drift" in warning for warning in result.warnings)
+    assert not any("drift" in warning for warning in result.warnings)
     assert "Clough-Penzien" in result.measured_accuracy

@@ -22,7 +22,9 @@ Modules: :mod:`.wen` (the equivalent linear coefficients, Eq. 20-21),
 :mod:`.ground` (the ground filter), :mod:`.lyapunov` (the stationary
 covariance), :mod:`.linear_system` (linearized buildings and their state
 space), :mod:`.iteration` (the fixed-point iteration), :mod:`.equivalent`
-(the equivalent storey forces along drift histories).
+(the equivalent storey forces along drift histories), :mod:`.residual` (the
+part of the Bouc-Wen law the linearization drops, as an input: its Wiener
+chaos, correlation and the pair's response to it).
 """
 
 from .equivalent import equivalent_storey_force

@@ -25,7 +25,12 @@ def result_html(snapshot: Snapshot, units: str = "SI", monte_carlo: MonteCarloPo
     e, p, case = snapshot.estimate, snapshot.estimate.paper, snapshot.case
     rate = "1/s"
     stationary = case.excitation.stationary
-    sigma_paper = d.velocity(e.sigma_relative_velocity) if stationary else d.velocity(p.sigma_relative_velocity_equivalent) + " (sigma_eq, Eq. 29)"
+    linearized = e.response  # the paper's sigmas: the linearized pair's, without the residual's response
+    sigma_paper = (
+        d.velocity(linearized.sigma_relative_velocity)
+        if stationary
+        else d.velocity(p.sigma_relative_velocity_equivalent) + " (sigma_eq, Eq. 29)"
+    )
     rows = [
         _row(
             "expected extreme pounding force F<sub>e</sub>",
@@ -33,7 +38,7 @@ def result_html(snapshot: Snapshot, units: str = "SI", monte_carlo: MonteCarloPo
             f'<span class="fe-paper">{d.force(p.force_expected)}</span>',
             "headline",
         ),
-        _row("sigma of relative displacement", d.length(e.sigma_relative_displacement), d.length(e.sigma_relative_displacement)),
+        _row("sigma of relative displacement", d.length(e.sigma_relative_displacement), d.length(linearized.sigma_relative_displacement)),
         _row("sigma of relative velocity", d.velocity(e.sigma_relative_velocity), sigma_paper),
         _row("crossing rate", f"{e.upcrossing_rate:.4g} {rate} (nu<sub>0</sub><sup>+</sup>)", f"{p.crossing_rate:.4g} {rate} (nu, Eq. 24)"),
         _row("effective duration", f"{case.excitation.duration:.4g} s", f"{p.duration_effective:.4g} s"),
