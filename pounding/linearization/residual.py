@@ -56,7 +56,7 @@ CHAOS_ORDERS = (3, 5)
 """Odd Wiener chaoses of the residual kept. Order 3 alone carries 80-100 % of
 its variance for the grid's storeys, orders 3-7 97-100 % (docs/estimator.md)."""
 _ANGULAR_NODES = 8  # Gauss-Legendre nodes per sector between the kinks of r
-_CORRELATION_FLOOR = 1e-2  # |M| below which M^3 (the correlation of r) is negligible, 1e-6
+_CORRELATION_FLOOR = 1e-2  # bound on |M| below which M^3 (the correlation of r) is negligible, 1e-6
 _HARMONIC_SAMPLES = 2.5  # lag samples per period of the highest harmonic (order 7 of the fastest mode): above Nyquist, no aliasing
 _MAX_LAGS = 16384
 _FREQUENCIES = np.geomspace(1e-3, 2.0e3, 1001)  # [rad/s]: 1.5 % steps resolve a mode damped 1.5 % or more
@@ -237,18 +237,24 @@ def _correlation_kernel(values, lefts, rights, step, count, exponents, coefficie
         for e in range(4):
             top = max(top, exponents[q, e])
     out = np.empty((count, storeys, storeys))
-    growth = np.empty(modes, dtype=np.complex128)
+    growth = np.ones(modes, dtype=np.complex128)
+    factor = np.exp(values * step)
+    grown = np.empty((storeys, 2, modes), dtype=np.complex128)
     powers = np.empty((4, top + 1))
     for t in range(count):
-        for n in range(modes):
-            growth[n] = np.exp(values[n] * (t * step))
+        if t > 0:
+            growth *= factor  # exp(values t step), without an exponential per lag
+        for j in range(storeys):
+            for a in range(2):
+                for n in range(modes):
+                    grown[j, a, n] = lefts[j, a, n] * growth[n]
         for j in range(storeys):
             for k in range(storeys):
                 for a in range(2):
                     for b in range(2):
                         entry = 0.0j
                         for n in range(modes):
-                            entry += lefts[j, a, n] * growth[n] * rights[k, n, b]
+                            entry += grown[j, a, n] * rights[k, n, b]
                         e = 2 * a + b
                         powers[e, 0] = 1.0
                         for power in range(1, top + 1):
@@ -267,20 +273,23 @@ def _correlation_kernel(values, lefts, rights, step, count, exponents, coefficie
 
 
 def _lag_grid(values: np.ndarray, modal_weights: np.ndarray) -> tuple[float, int]:
-    """Lag step [s] and count: the step samples the highest harmonic (the top
-    chaos order times the fastest mode) above Nyquist; the grid runs until
-    every mode's contribution to the whitened correlation M has decayed below
-    the floor."""
+    """Lag step [s] and count.
+
+    The step samples the highest harmonic (the top chaos order times the
+    fastest mode) above Nyquist. The grid runs until the bound
+    sum_n weight_n exp(Re(l_n) tau) on the whitened correlation M has fallen
+    below the floor, so that M^3, the correlation of r, is below its cube: a
+    slow mode of small weight (a yielded storey's drift) does not stretch it."""
     top = max(CHAOS_ORDERS) * float(np.max(np.abs(values)))
     step = 2.0 * math.pi / (_HARMONIC_SAMPLES * top)
-    decay = -values.real
-    with np.errstate(divide="ignore"):
-        spans = np.log(np.maximum(modal_weights * values.size / _CORRELATION_FLOOR, 1.0)) / decay
-    span = float(np.max(spans[np.isfinite(spans)], initial=10.0 * step))
+    candidates = np.geomspace(step, 600.0, 120)
+    bound = np.exp(np.outer(candidates, values.real)) @ modal_weights
+    below = np.flatnonzero(bound <= _CORRELATION_FLOOR)
+    span = float(candidates[below[0]] if below.size else candidates[-1])
     count = int(min(_MAX_LAGS, math.ceil(span / step) + 1))
     if count == _MAX_LAGS:
         step = span / (count - 1)  # a very slow mode: keep the span, coarsen the step
-    return step, count
+    return step, max(count, 16)
 
 
 def _modal_correlation(model: StateSpace, linearized):
@@ -346,25 +355,58 @@ def residual_response(model: StateSpace, linearized: tuple[LinearizedBuilding, .
     grid = 2.0 * math.pi * np.fft.rfftfreq(size, step)
     spectrum = (transform + np.conj(np.swapaxes(transform, 1, 2))) / (2.0 * math.pi)
     omega = _FREQUENCIES[_FREQUENCIES < grid[-1]]
-    # S is smooth (a product of decaying correlations): linear in omega between FFT bins.
-    position = omega / grid[1]
-    below = position.astype(int)
-    fraction = (position - below)[:, None, None]
-    density = spectrum[below] * (1.0 - fraction) + spectrum[below + 1] * fraction
+    weights = np.zeros(omega.size)  # trapezoid rule on the logarithmic grid
+    weights[1:] += 0.5 * np.diff(omega)
+    weights[:-1] += 0.5 * np.diff(omega)
     inputs = np.zeros((model.size, len(storeys)))
     for i, storey in enumerate(storeys):
         inputs[storey.input_state, i] = 1.0
-    # G[w, o, m] = sum_n (outputs V)[o, n] (V^-1 B)[n, m] / (i w - l_n): one product over the modes.
-    modal = (outputs @ vectors)[:, :, None] * np.linalg.solve(vectors, inputs)[None, :, :]
-    resolvent = 1.0 / (1j * omega[:, None] - values[None, :])
-    gain = (resolvent @ np.moveaxis(modal, 1, 0).reshape(values.size, -1)).reshape(omega.size, *modal.shape[::2])
-    # 2 int_0^inf G S G^H d omega by the trapezoid rule, as one product over (omega, k).
-    weights = np.zeros(omega.size)
-    weights[1:] += 0.5 * np.diff(omega)
-    weights[:-1] += 0.5 * np.diff(omega)
-    driven = (gain @ density) * weights[:, None, None]  # G S, weighted, at [w, o, k]
-    rows = outputs.shape[0]
-    return 2.0 * (np.moveaxis(driven, 1, 0).reshape(rows, -1) @ np.moveaxis(np.conj(gain), 1, 0).reshape(rows, -1).T).real
+    return _response_kernel(
+        omega, weights, values, outputs @ vectors, np.linalg.solve(vectors, inputs), grid[1], np.ascontiguousarray(spectrum)
+    )
+
+
+@njit(cache=True)
+def _response_kernel(omega, weights, values, left, right, spacing, spectrum):
+    """2 sum_w weights_w Re(G S G^H) at the frequencies ``omega``, with
+    G = left diag(1 / (i w - values)) right (the modal frequency response from
+    the z equations to the outputs) and S interpolated linearly between the
+    FFT bins (``spacing`` apart from 0); S is smooth, a transform of a
+    product of decaying correlations."""
+    outputs, modes, storeys = left.shape[0], values.size, right.shape[1]
+    out = np.zeros((outputs, outputs))
+    resolvent = np.empty(modes, dtype=np.complex128)
+    gain = np.empty((outputs, storeys), dtype=np.complex128)
+    density = np.empty((storeys, storeys), dtype=np.complex128)
+    driven = np.empty((outputs, storeys), dtype=np.complex128)
+    for w in range(omega.size):
+        for n in range(modes):
+            resolvent[n] = 1.0 / (1j * omega[w] - values[n])
+        for o in range(outputs):
+            for m in range(storeys):
+                total = 0.0j
+                for n in range(modes):
+                    total += left[o, n] * resolvent[n] * right[n, m]
+                gain[o, m] = total
+        position = omega[w] / spacing
+        below = int(position)
+        fraction = position - below
+        for m in range(storeys):
+            for k in range(storeys):
+                density[m, k] = spectrum[below, m, k] * (1.0 - fraction) + spectrum[below + 1, m, k] * fraction
+        for o in range(outputs):
+            for k in range(storeys):
+                total = 0.0j
+                for m in range(storeys):
+                    total += gain[o, m] * density[m, k]
+                driven[o, k] = total
+        for o in range(outputs):
+            for q in range(outputs):
+                total = 0.0j
+                for k in range(storeys):
+                    total += driven[o, k] * np.conj(gain[q, k])
+                out[o, q] += 2.0 * weights[w] * total.real
+    return out
 
 
 def residual_response_sampled(
