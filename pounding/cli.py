@@ -228,7 +228,7 @@ def _estimate(args) -> int:
     print("recommended (gap-aware)")
     print(f"  expected extreme force    {_format_force(result.force_expected)}")
     print(f"  expected peak impact v    {result.relative_velocity_expected:.4f} m/s")
-    print(f"  expected impacts          {result.impacts_expected:.2f}")
+    print(f"  expected impacts          {result.impacts_expected:.2f}   (approaches from below the gap; rebounds not counted)")
     print(f"  force braking an impact   {_format_force(result.opposing_force)}   (the buildings' own, at the gap)")
     print(f"  pounding probability      {100 * result.pounding_probability:.1f} %")
     print(f"  gap for {100 * result.target_probability:g} % no pounding  {100 * result.required_gap:.2f} cm"
