@@ -16,7 +16,11 @@ from pounding.linearization.residual import (
     residual_response,
     residual_response_sampled,
 )
-from pounding.response import contact_output_matrix, response_lyapunov, response_with_residual
+from pounding.response import (
+    contact_output_matrix,
+    response_lyapunov,
+    response_with_residual,
+)
 from pounding.simulation import simulate_record
 from pounding.validation import _vary
 
@@ -50,7 +54,7 @@ def test_residual_is_orthogonal_to_the_linear_law_and_its_chaos_carries_its_vari
         velocity, z = np.linalg.cholesky(covariance) @ rng.standard_normal((2, 2_000_000))
         r = _bouc_wen_rate(law, velocity, z) - lb.c_e[0] * velocity - lb.k_e[0] * z
         assert abs(np.corrcoef(r, velocity)[0, 1]) < 0.01 and abs(np.corrcoef(r, z)[0, 1]) < 0.01
-        whitening, chaos, variance = residual_chaos(law, lb.c_e[0], lb.k_e[0], covariance)
+        _, chaos, variance = residual_chaos(law, lb.c_e[0], lb.k_e[0], covariance)
         assert variance == pytest.approx(np.mean(r * r), rel=0.01)
         kept = sum(
             math.factorial(p) ** 2 * sum(t[a] ** 2 / (math.factorial(a) * math.factorial(p - a)) for a in range(p + 1))
