@@ -364,6 +364,16 @@ def _crossings(case: Case, linearized, model: StateSpace, response: ContactRespo
     return _merged(np.sqrt(variance_x[alive]), np.sqrt(variance_v[alive]), weights[alive], bandwidth, frequency_squared)
 
 
+def _pair_statistics(case: Case, linearized):
+    """The linearized pair's state space and stationary response (the paper's),
+    the response with the residual's part (the recommended estimator's), and
+    the crossings history built on them; none depends on the gap."""
+    model = pair_state_space(case, linearized)
+    linear = response_lyapunov(case, linearized, model)
+    response = response_with_residual(case, linearized, model, linear)
+    return model, linear, response, _crossings(case, linearized, model, response, linear)
+
+
 def _merged(
     sigma_x: np.ndarray, sigma_v: np.ndarray, weights: np.ndarray, bandwidth: float, frequency_squared: float, tolerance: float = 1e-4
 ) -> _Crossings:
@@ -571,10 +581,7 @@ def estimate(
     """
     _check_probability(target_probability)
     linearized = linearized or linearize_pair(case)
-    model = pair_state_space(case, linearized)
-    linear = response_lyapunov(case, linearized, model)
-    response = response_with_residual(case, linearized, model, linear)
-    crossings = _crossings(case, linearized, model, response, linear)
+    model, linear, response, crossings = _pair_statistics(case, linearized)
     contact = case.contact
     gap = np.array([contact.gap])
     impacts = float(crossings.intensity(gap, np.zeros(1))[0, 0])
@@ -629,7 +636,5 @@ def force_versus_gap(case: Case, gaps, linearized=None) -> GapCurve:
     """The recommended estimate over many gaps [m]; the linearization and the
     response statistics are computed once (see also :meth:`Estimate.gap_curve`)."""
     linearized = linearized or linearize_pair(case)
-    model = pair_state_space(case, linearized)
-    linear = response_lyapunov(case, linearized, model)
-    crossings = _crossings(case, linearized, model, response_with_residual(case, linearized, model, linear), linear)
+    model, linear, _, crossings = _pair_statistics(case, linearized)
     return _gap_curve(case, crossings, gaps, paper_estimate(case, linearized, linear, model=model).force_expected)
