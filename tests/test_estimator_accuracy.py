@@ -182,3 +182,19 @@ def test_elastic_pairs_get_no_drift_warning():
     result = estimate(case)
     assert not any("drift" in warning for warning in result.warnings)
     assert "Clough-Penzien" in result.measured_accuracy
+
+
+def test_narrow_band_pairs_are_flagged_where_vanmarcke_over_clumps():
+    """Close periods (1.2 / 0.8 s, bandwidth q = 0.21): the clump factor counts
+    too few independent approaches far from the mean (documented -26 % at
+    1.5 sigma_X), so the estimate must carry the narrow-band warning; the
+    broad-band Section 5 pair must not."""
+    base = _vary(load_case("section5-T2-0.4"), elastic=True, periods=(1.2, 0.8))
+    sigma = estimate(base).sigma_relative_displacement
+    case = dataclasses.replace(base, contact=dataclasses.replace(base.contact, gap=1.5 * sigma))
+    result = estimate(case)
+    assert result.crossings.bandwidth < 0.3
+    assert any("narrow-band" in warning and "pounding simulate" in warning for warning in result.warnings)
+    mean, error = _monte_carlo(case)
+    assert result.force_expected < 0.9 * mean - error
+    assert not any("narrow-band" in warning for warning in estimate(load_case("section5-T2-0.4")).warnings)

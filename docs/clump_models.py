@@ -1,0 +1,214 @@
+"""Clumps of crossings: Vanmarcke's factor against a conditional count.
+
+Reproduces the tables of "Clumps: Vanmarcke's factor against a conditional
+count" in docs/estimator.md. A diagnosis, not part of the estimator.
+
+The *conditional count* takes an approach faster than v at t (X up-crosses the
+gap d with V > v) as the start of a clump when no such approach happened in the
+window (t - W, t), W = 1.5 mean periods 2 pi sigma_X / sigma_V. Given
+X(t) = d, V(t) = v', the state Z(t - s) = (X, V)(t - s) is Gaussian (the pair's
+autocovariance, from its state space), so the expected number N of such
+approaches in the window is Rice's formula under that conditional law, and the
+window is taken empty with probability exp(-N). As in Vanmarcke's factor,
+the rate of clump starts is divided by the probability 1 - exp(-r^2 / 2) of
+not being in a clump (r^2 = u^2 + rho^2), capped at Rice's rate.
+
+    python3 docs/clump_models.py           # the free motion of 5 elastic pairs, about 3 min
+    python3 docs/clump_models.py --grid    # the estimator's grid, about 20 min
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+from scipy.linalg import expm
+from scipy.special import erfc
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+import pounding.estimator as estimator  # noqa: E402
+from pounding import integrate, load_case, simulate  # noqa: E402
+from pounding.excitation import ground_accelerations  # noqa: E402
+from pounding.linearization import linearize_pair, pair_state_space  # noqa: E402
+from pounding.response import contact_output_matrix  # noqa: E402
+from pounding.validation import _vary, accuracy_cases  # noqa: E402
+
+SEED = 11
+FREE_RECORDS, GRID_RECORDS = 3000, 300
+PAIRS = [(1.2, 0.4), (2.0, 0.5), (0.6, 0.3), (0.5, 0.3), (1.2, 0.8)]
+LEVELS = [0.0, 1.0, 1.5, 2.0, 2.5]
+WINDOW = 1.5  # mean periods
+SPEEDS = np.linspace(0.0, 10.0, 201)  # rho' grid [sigma_V]
+
+
+def _q(x):
+    return 0.5 * erfc(x / math.sqrt(2.0))
+
+
+def _phi(x):
+    return np.exp(-0.5 * x * x) / math.sqrt(2.0 * math.pi)
+
+
+@dataclasses.dataclass(frozen=True)
+class Lags:
+    """Normalized Cov(Z(t - s), Z(t)) of Z = (X / sigma_X, V / sigma_V) at the window's lags s."""
+
+    lags: np.ndarray
+    before: np.ndarray  # (lags, 2, 2)
+    omega: float
+
+    @property
+    def after(self) -> np.ndarray:
+        """Cov(Z(t + s), Z(t))."""
+        return np.transpose(self.before, (0, 2, 1))
+
+
+def pair_lags(case) -> Lags:
+    model = pair_state_space(case, linearize_pair(case))
+    outputs = contact_output_matrix(case, model)
+    rows = np.array([outputs[0] - outputs[1], outputs[2] - outputs[3]])
+    covariance = model.covariance()
+    sigma = np.sqrt(np.diag(rows @ covariance @ rows.T))
+    omega = sigma[1] / sigma[0]
+    lags = np.linspace(0.02, WINDOW, 40) * 2.0 * math.pi / omega
+    before = np.array([(rows @ expm(model.matrix * s) @ covariance @ rows.T / np.outer(sigma, sigma)).T for s in lags])
+    return Lags(lags, before, omega)
+
+
+def approaches_in_window(lags: Lags, covariance_lagged, u, speeds, rho, both_ways: bool) -> np.ndarray:
+    """Expected up-crossings of u faster than rho (and, ``both_ways``, down-crossings
+    faster than rho) in the window, given Z(t) = (u, speeds)."""
+    state = np.stack([np.full_like(speeds, u), speeds])
+    mean = np.einsum("sij,jn->sin", covariance_lagged, state)
+    cov = np.eye(2)[None] - np.einsum("sij,skj->sik", covariance_lagged, covariance_lagged)
+    k11 = np.maximum(cov[:, 0, 0], 1e-12)[:, None]
+    k21, k22 = cov[:, 1, 0][:, None], cov[:, 1, 1][:, None]
+    density = _phi((u - mean[:, 0]) / np.sqrt(k11)) / np.sqrt(k11)
+    mu = mean[:, 1] + k21 / k11 * (u - mean[:, 0])
+    sd = np.sqrt(np.maximum(k22 - k21**2 / k11, 1e-12))
+    rate = mu * _q((rho - mu) / sd) + sd * _phi((rho - mu) / sd)
+    if both_ways:
+        rate = rate - mu * _q((rho + mu) / sd) + sd * _phi((rho + mu) / sd)
+    return np.trapezoid(lags.omega * density * rate, lags.lags, axis=0)
+
+
+def conditional_intensity(crossings, lags: Lags, gaps, velocities, count: str) -> np.ndarray:
+    """Lambda(gap, v) with the conditional count of clumps; ``count``: "free"
+    (the free motion's crossings), "time cut" (the estimator's returns) or
+    "mirror" (Zhuravlev's returns: down-crossings count as approaches too)."""
+    gaps, velocities = np.atleast_1d(gaps).astype(float), np.atleast_1d(velocities).astype(float)
+    mirror = count == "mirror"
+    out = np.zeros((gaps.size, velocities.size))
+    for i, gap in enumerate(gaps):
+        for sigma_x, sigma_v, weight in zip(crossings.sigma_x, crossings.sigma_v, crossings.weights):
+            u = gap / sigma_x
+            if u > 10.0:
+                continue
+            scale = 1.0 / (0.5 * erfc(-u / math.sqrt(2.0))) if count == "time cut" else 1.0
+            for j, v in enumerate(velocities):
+                rho = v / sigma_v
+                if rho > 9.5:
+                    continue
+                speeds = np.concatenate([[rho], SPEEDS[SPEEDS > rho]])
+                rice = math.exp(-0.5 * u * u) / (2.0 * math.pi) * speeds * np.exp(-0.5 * speeds**2) * sigma_v / sigma_x
+                outside = max(-math.expm1(-0.5 * (u * u + rho * rho)), 1e-12)
+                start = np.minimum(1.0, np.exp(-approaches_in_window(lags, lags.before, u, speeds, rho, mirror)) / outside)
+                if mirror:  # a down-crossing starts a clump if the window after an up-crossing is empty (reversibility)
+                    start = start + np.minimum(1.0, np.exp(-approaches_in_window(lags, lags.after, u, speeds, rho, True)) / outside)
+                out[i, j] += weight * scale * np.trapezoid(rice * start, speeds)
+    return out
+
+
+def expected_power(intensity, speeds, power=1.2):
+    return float(np.trapezoid(-np.expm1(-intensity), speeds**power))
+
+
+def free_speeds(case, gaps, records) -> np.ndarray:
+    """Each record's largest up-crossing speed of each gap by the free relative motion."""
+    free = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=10.0))
+    level_1, level_2 = case.contact.levels
+    out = np.zeros((len(gaps), records))
+    for i, record in enumerate(ground_accelerations(case.excitation, SEED, np.arange(records))):
+        history = integrate(free, record, case.excitation.time_step)
+        x = history.penetration + 10.0
+        v = history.velocity[:, history.floor(1, level_1)] - history.velocity[:, history.floor(2, level_2)]
+        for k, gap in enumerate(gaps):
+            up = np.flatnonzero((x[:-1] < gap) & (x[1:] >= gap))
+            if up.size:
+                share = (gap - x[up]) / (x[up + 1] - x[up])
+                out[k, i] = max(np.max(v[up] + share * (v[up + 1] - v[up])), 0.0)
+    return out
+
+
+def free_motion_table() -> None:
+    print("| pair | q | gap / sigma_X | P(crossing), simulated | Vanmarcke | no clumps | conditional |")
+    print("|---|---|---|---|---|---|---|")
+    for periods in PAIRS:
+        case = _vary(load_case("section5-T2-0.4"), elastic=True, periods=periods)
+        crossings = estimator.estimate(case).crossings
+        sigma = crossings.sigma_x[-1]
+        gaps = [level * sigma for level in LEVELS]
+        simulated = free_speeds(case, gaps, FREE_RECORDS)
+        lags = pair_lags(case)
+        velocities = np.linspace(0.0, 6.0 * crossings.sigma_v.max(), 80)
+        for gap, speeds in zip(gaps, simulated):
+            target = np.mean(speeds**1.2)
+            cells = []
+            for clumps in (True, False):  # the estimator's kernel, without its time cut
+                rice = _free_kernel(crossings, gap, velocities, clumps)
+                cells.append(f"{expected_power(rice, velocities) / target - 1:+.1%}")
+            conditional = conditional_intensity(crossings, lags, gap, velocities, "free")[0]
+            cells.append(f"{expected_power(conditional, velocities) / target - 1:+.1%}")
+            print(f"| {periods[0]}/{periods[1]} | {crossings.bandwidth:.2f} | {gap / sigma:.1f} | {np.mean(speeds > 0):.3f} | " + " | ".join(cells) + " |")
+
+
+def _free_kernel(crossings, gap, velocities, clumps: bool) -> np.ndarray:
+    """Rice's count of the free motion's crossings (no time cut), with or without Vanmarcke's clumps."""
+    clumping = math.sqrt(math.pi / 2.0) * crossings.bandwidth**1.2 if clumps else math.inf
+    out = np.zeros(velocities.size)
+    for sigma_x, sigma_v, weight in zip(crossings.sigma_x, crossings.sigma_v, crossings.weights):
+        u, rho = gap / sigma_x, velocities / sigma_v
+        r = np.hypot(u, rho)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            factor = np.where(r > 1e-9, np.minimum(1.0, -np.expm1(-clumping * r) / -np.expm1(-0.5 * r * r)), 1.0)
+        out += weight * sigma_v / (2.0 * math.pi * sigma_x) * np.exp(-0.5 * r * r) * factor
+    return out
+
+
+def grid_table() -> None:
+    print("| case | gap / sigma_X | q | Vanmarcke, time cut (the estimator) | conditional, time cut | conditional, mirror returns |")
+    print("|---|---|---|---|---|---|")
+    original = estimator._Crossings.intensity
+    errors = []
+    try:
+        for case in accuracy_cases():
+            mean = simulate(case, records=GRID_RECORDS, seed=SEED).force_max_mean
+            result = estimator.estimate(case)
+            lags = pair_lags(case)
+            row = [result.force_expected / mean - 1]
+            for count in ("time cut", "mirror"):
+                def intensity(self, gaps, velocities, clumps=True, count=count):
+                    if not clumps:  # the required gap keeps every crossing counted
+                        return original(self, gaps, velocities, clumps=False)
+                    return conditional_intensity(self, lags, gaps, velocities, count)
+
+                estimator._Crossings.intensity = intensity
+                row.append(estimator.estimate(case).force_expected / mean - 1)
+                estimator._Crossings.intensity = original
+            errors.append(row)
+            print(f"| {case.name} | {case.contact.gap / result.sigma_relative_displacement:.2f} | {result.crossings.bandwidth:.2f} | "
+                  + " | ".join(f"{e:+.1%}" for e in row) + " |", flush=True)
+    finally:
+        estimator._Crossings.intensity = original
+    errors = np.abs(np.array(errors))
+    print()
+    print("within 10 %: " + ", ".join(str(int(n)) for n in (errors <= 0.10).sum(axis=0)) + f" of {len(errors)}; median: "
+          + ", ".join(f"{m:.1%}" for m in np.median(errors, axis=0)))
+
+
+if __name__ == "__main__":
+    grid_table() if "--grid" in sys.argv[1:] else free_motion_table()
