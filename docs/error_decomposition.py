@@ -72,27 +72,29 @@ def free_motion_speeds(case) -> np.ndarray:
     return speeds
 
 
-def _expected_power(result, power: float, rate, points: int = 400) -> float:
+def _expected_power(result, power: float, rate, points: int = 400, gap: float | None = None, clumps: bool = True) -> float:
     """E[V_max^p] from an impact rate ``rate(u, rho)`` (per unit time, in units of
     sigma_V / sigma_X, for crossings faster than rho sigma_V at u = d / sigma_X)
-    with Vanmarcke's clumps, over the pair's sigma history."""
-    crossings, gap = result.crossings, result.case.contact.gap
-    clumping = math.sqrt(math.pi / 2.0) * crossings.bandwidth**1.2
+    with Vanmarcke's clumps (or without, ``clumps=False``), over the pair's sigma
+    history, at the case's gap or at ``gap`` [m]."""
+    crossings = result.crossings
+    gap = result.case.contact.gap if gap is None else gap
+    clumping = math.sqrt(math.pi / 2.0) * crossings.bandwidth**1.2 if clumps else math.inf
     speeds = np.linspace(0.0, 10.0 * crossings.sigma_v.max(), points)
     expected = np.zeros(points)
     for sigma_x, sigma_v, weight in zip(crossings.sigma_x, crossings.sigma_v, crossings.weights):
         u, rho = gap / sigma_x, speeds / sigma_v
         r = np.hypot(u, rho)
         with np.errstate(invalid="ignore", divide="ignore"):
-            clumps = np.where(r > 1e-9, np.minimum(1.0, -np.expm1(-clumping * r) / -np.expm1(-0.5 * r * r)), 1.0)
-        expected += weight * sigma_v / sigma_x * rate(u, rho) * clumps
+            factor = np.where(r > 1e-9, np.minimum(1.0, -np.expm1(-clumping * r) / -np.expm1(-0.5 * r * r)), 1.0)
+        expected += weight * sigma_v / sigma_x * rate(u, rho) * factor
     return float(np.trapezoid(-np.expm1(-expected), speeds**power))
 
 
-def rice_expected_power(result, power: float) -> float:
+def rice_expected_power(result, power: float, gap: float | None = None, clumps: bool = True) -> float:
     """Rice's count of the free motion's crossings, no returns after an impact:
     exp(-(u^2 + rho^2) / 2) / (2 pi). Only for this diagnosis."""
-    return _expected_power(result, power, lambda u, rho: np.exp(-0.5 * (u * u + rho * rho)) / (2 * math.pi))
+    return _expected_power(result, power, lambda u, rho: np.exp(-0.5 * (u * u + rho * rho)) / (2 * math.pi), gap=gap, clumps=clumps)
 
 
 def mirror_expected_power(result, power: float) -> float:

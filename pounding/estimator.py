@@ -522,7 +522,7 @@ REQUIRED_GAP_WARNING = (
 NARROW_BAND_LIMIT = 0.35
 """Below this bandwidth q of X, Vanmarcke's clump factor was measured off (docs/estimator.md)."""
 NARROW_BAND_WARNING = (
-    "the relative displacement is narrow-band (bandwidth q = {bandwidth:.2f} < 0.35, as for buildings of close "
+    "the relative displacement is narrow-band (bandwidth q = {bandwidth:.2f} < {limit}, as for buildings of close "
     "periods): Vanmarcke's factor counts its crossings in clumps too long, and the estimate was measured from "
     "+27 % (gap 0) to -43 % (gap 2.5 sigma_X) off Monte Carlo for 3 elastic pairs with q = 0.21-0.33 "
     "(docs/estimator.md); check it with `pounding simulate`"
@@ -552,7 +552,7 @@ def _warnings(case: Case, linearized, response: ContactResponse, required_gap: f
     if key == ("clough-penzien", True):
         warnings.append(DRIFT_WARNING)
     if bandwidth < NARROW_BAND_LIMIT:
-        warnings.append(NARROW_BAND_WARNING.format(bandwidth=bandwidth))
+        warnings.append(NARROW_BAND_WARNING.format(bandwidth=bandwidth, limit=NARROW_BAND_LIMIT))
     if case.contact.gap > sigma:
         warnings.append(TAIL_WARNING.format(range=ACCURACY_RARE[key]))
     if required_gap > sigma:
