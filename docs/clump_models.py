@@ -13,8 +13,12 @@ window is taken empty with probability exp(-N). As in Vanmarcke's factor,
 the rate of clump starts is divided by the probability 1 - exp(-r^2 / 2) of
 not being in a clump (r^2 = u^2 + rho^2), capped at Rice's rate.
 
+Vanmarcke's factor is put beside it with the estimator's constant sqrt(pi / 2)
+(his, derived for crossings of +-d) and with sqrt(2 pi), what the same
+derivation gives for crossings of d alone.
+
     python3 docs/clump_models.py           # the free motion of 5 elastic pairs, about 3 min
-    python3 docs/clump_models.py --grid    # the estimator's grid, about 20 min
+    python3 docs/clump_models.py --grid    # the estimator's grid, about 30 min
 """
 
 from __future__ import annotations
@@ -30,7 +34,7 @@ from scipy.special import erfc
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from error_decomposition import rice_expected_power  # noqa: E402  (beside this script)
+from error_decomposition import ONE_SIDED, rice_expected_power  # noqa: E402  (beside this script)
 
 import pounding.estimator as estimator  # noqa: E402
 from pounding import integrate, load_case, simulate  # noqa: E402
@@ -81,9 +85,9 @@ def pair_lags(case) -> Lags:
     return Lags(lags, before, omega)
 
 
-def approaches_in_window(lags: Lags, covariance_lagged, u, speeds, rho, both_ways: bool) -> np.ndarray:
-    """Expected up-crossings of u faster than rho (and, ``both_ways``, down-crossings
-    faster than rho) in the window, given Z(t) = (u, speeds)."""
+def approaches_in_window(lags: Lags, covariance_lagged, u, speeds, rho, crossings: str) -> np.ndarray:
+    """Expected crossings of u faster than rho in the window, given Z(t) = (u, speeds);
+    ``crossings``: "up", "down" or "both" ways."""
     state = np.stack([np.full_like(speeds, u), speeds])
     mean = np.einsum("sij,jn->sin", covariance_lagged, state)
     cov = np.eye(2)[None] - np.einsum("sij,skj->sik", covariance_lagged, covariance_lagged)
@@ -92,16 +96,19 @@ def approaches_in_window(lags: Lags, covariance_lagged, u, speeds, rho, both_way
     density = _phi((u - mean[:, 0]) / np.sqrt(k11)) / np.sqrt(k11)
     mu = mean[:, 1] + k21 / k11 * (u - mean[:, 0])
     sd = np.sqrt(np.maximum(k22 - k21**2 / k11, 1e-12))
-    rate = mu * _q((rho - mu) / sd) + sd * _phi((rho - mu) / sd)
-    if both_ways:
-        rate = rate - mu * _q((rho + mu) / sd) + sd * _phi((rho + mu) / sd)
+    up = mu * _q((rho - mu) / sd) + sd * _phi((rho - mu) / sd)
+    down = -mu * _q((rho + mu) / sd) + sd * _phi((rho + mu) / sd)
+    rate = {"up": up, "down": down, "both": up + down}[crossings]
     return np.trapezoid(lags.omega * density * rate, lags.lags, axis=0)
 
 
-def conditional_intensity(crossings, lags: Lags, gaps, velocities, count: str) -> np.ndarray:
+def conditional_intensity(crossings, lags: Lags, gaps, velocities, count: str, window_crossings: str = "up") -> np.ndarray:
     """Lambda(gap, v) with the conditional count of clumps; ``count``: "free"
     (the free motion's crossings), "time cut" (the estimator's returns) or
-    "mirror" (Zhuravlev's returns: down-crossings count as approaches too)."""
+    "mirror" (Zhuravlev's returns: down-crossings count as approaches too, and
+    the window counts both ways). ``window_crossings`` ("up", "down", "both"):
+    which of the free motion's crossings in the window end a clump, for the
+    free motion and the time cut."""
     gaps, velocities = np.atleast_1d(gaps).astype(float), np.atleast_1d(velocities).astype(float)
     mirror = count == "mirror"
     out = np.zeros((gaps.size, velocities.size))
@@ -118,10 +125,28 @@ def conditional_intensity(crossings, lags: Lags, gaps, velocities, count: str) -
                 speeds = np.concatenate([[rho], SPEEDS[SPEEDS > rho]])
                 rice = math.exp(-0.5 * u * u) / (2.0 * math.pi) * speeds * np.exp(-0.5 * speeds**2) * sigma_v / sigma_x
                 outside = max(-math.expm1(-0.5 * (u * u + rho * rho)), 1e-12)
-                start = np.minimum(1.0, np.exp(-approaches_in_window(lags, lags.before, u, speeds, rho, mirror)) / outside)
+                window = "both" if mirror else window_crossings
+                start = np.minimum(1.0, np.exp(-approaches_in_window(lags, lags.before, u, speeds, rho, window)) / outside)
                 if mirror:  # a down-crossing starts a clump if the window after an up-crossing is empty (reversibility)
-                    start = start + np.minimum(1.0, np.exp(-approaches_in_window(lags, lags.after, u, speeds, rho, True)) / outside)
+                    start = start + np.minimum(1.0, np.exp(-approaches_in_window(lags, lags.after, u, speeds, rho, "both")) / outside)
                 out[i, j] += weight * scale * np.trapezoid(rice * start, speeds)
+    return out
+
+
+def one_sided_intensity(crossings, gaps, velocities) -> np.ndarray:
+    """Lambda(gap, v) of the estimator (time cut, Vanmarcke's clumps) with the clump
+    exponent derived for crossings of d alone at the time cut's rate nu / Phi(u)
+    while the envelope is above r: sqrt(2 pi) q^1.2 Phi(u) r (the estimator's
+    sqrt(pi / 2) q^1.2 r is the same at u = 0, the double barrier's elsewhere)."""
+    gaps, velocities = np.atleast_1d(gaps).astype(float), np.atleast_1d(velocities).astype(float)
+    out = np.zeros((gaps.size, velocities.size))
+    for sigma_x, sigma_v, weight in zip(crossings.sigma_x, crossings.sigma_v, crossings.weights):
+        u, rho = gaps[:, None] / sigma_x, velocities[None, :] / sigma_v
+        below = 1.0 - _q(u)
+        r = np.hypot(u, rho)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            clumps = np.where(r > 1e-9, np.minimum(1.0, -np.expm1(-ONE_SIDED * crossings.bandwidth**1.2 * below * r) / -np.expm1(-0.5 * r * r)), 1.0)
+        out += weight * sigma_v / (2.0 * math.pi * sigma_x) * np.exp(-0.5 * (u * u + rho * rho)) / below * clumps
     return out
 
 
@@ -147,8 +172,8 @@ def free_speeds(case, gaps, records) -> np.ndarray:
 
 
 def free_motion_table() -> None:
-    print("| pair | q | gap / sigma_X | P(crossing), simulated | Vanmarcke | no clumps | conditional |")
-    print("|---|---|---|---|---|---|---|")
+    print("| pair | q | gap / sigma_X | P(crossing), simulated | Vanmarcke | Vanmarcke, one side | no clumps | conditional |")
+    print("|---|---|---|---|---|---|---|---|")
     for periods in PAIRS:
         case = _vary(load_case("section5-T2-0.4"), elastic=True, periods=periods)
         result = estimator.estimate(case)
@@ -160,30 +185,42 @@ def free_motion_table() -> None:
         velocities = np.linspace(0.0, 6.0 * crossings.sigma_v.max(), 80)
         for gap, speeds in zip(gaps, simulated):
             target = np.mean(speeds**1.2)
-            cells = [f"{rice_expected_power(result, 1.2, gap=gap, clumps=clumps) / target - 1:+.1%}" for clumps in (True, False)]
+            counts = [rice_expected_power(result, 1.2, gap=gap), rice_expected_power(result, 1.2, gap=gap, barrier=ONE_SIDED)]
+            counts.append(rice_expected_power(result, 1.2, gap=gap, clumps=False))
+            cells = [f"{count / target - 1:+.1%}" for count in counts]
             conditional = conditional_intensity(crossings, lags, gap, velocities, "free")[0]
             cells.append(f"{expected_power(conditional, velocities) / target - 1:+.1%}")
             print(f"| {periods[0]}/{periods[1]} | {crossings.bandwidth:.2f} | {gap / sigma:.1f} | {np.mean(speeds > 0):.3f} | " + " | ".join(cells) + " |")
 
 
 def grid_table() -> None:
-    print("| case | gap / sigma_X | q | Vanmarcke, time cut (the estimator) | conditional, time cut | conditional, mirror returns |")
-    print("|---|---|---|---|---|---|")
+    counts = [("time cut", "up"), ("mirror", "both"), ("time cut", "down"), ("time cut", "both")]
+    print("| case | gap / sigma_X | q | Vanmarcke, time cut (the estimator) | Vanmarcke one side, time cut | conditional, time cut "
+          "| conditional, mirror returns | time cut, window of down-crossings | time cut, window both ways |")
+    print("|---|---|---|---|---|---|---|---|---|")
     original = estimator._Crossings.intensity
+
+    def patched(clumped):
+        def intensity(self, gaps, velocities, clumps=True):
+            if not clumps:  # the required gap keeps every crossing counted
+                return original(self, gaps, velocities, clumps=False)
+            return clumped(self, gaps, velocities)
+
+        return intensity
+
     errors = []
     try:
         for case in accuracy_cases():
             mean = simulate(case, records=GRID_RECORDS, seed=SEED).force_max_mean
             result = estimator.estimate(case)
             lags = pair_lags(case)
+            variants = [one_sided_intensity] + [
+                lambda self, gaps, velocities, count=count, window=window: conditional_intensity(self, lags, gaps, velocities, count, window)
+                for count, window in counts
+            ]
             row = [result.force_expected / mean - 1]
-            for count in ("time cut", "mirror"):
-                def intensity(self, gaps, velocities, clumps=True, count=count, lags=lags):
-                    if not clumps:  # the required gap keeps every crossing counted
-                        return original(self, gaps, velocities, clumps=False)
-                    return conditional_intensity(self, lags, gaps, velocities, count)
-
-                estimator._Crossings.intensity = intensity
+            for variant in variants:
+                estimator._Crossings.intensity = patched(variant)
                 row.append(estimator.estimate(case).force_expected / mean - 1)
                 estimator._Crossings.intensity = original
             errors.append(row)

@@ -323,6 +323,9 @@ class _Crossings:
 
         ``clumps=False`` counts every crossing of the free motion (no
         Vanmarcke factor): an upper bound on the number of clumps."""
+        # sqrt(pi / 2) is Vanmarcke's constant for two crossings a period while the
+        # envelope is high, as the time cut counts them at the mean position; the
+        # one-sided sqrt(2 pi) was measured worse (docs/estimator.md, "Clumps").
         return _intensity_kernel(
             np.ascontiguousarray(gaps, dtype=float).ravel(),
             np.ascontiguousarray(velocities, dtype=float).ravel(),
