@@ -19,7 +19,7 @@ derivation gives for crossings of d alone.
 
     python3 docs/clump_models.py           # the free motion of 5 elastic pairs, about 3 min
     python3 docs/clump_models.py --grid    # the estimator's grid, about 30 min
-    python3 docs/clump_models.py --free-grid   # the grid's free motion, about 10 min
+    python3 docs/clump_models.py --free-grid   # the grid's free motion, about 3 min
 """
 
 from __future__ import annotations
