@@ -30,7 +30,7 @@ from pounding.report import DEFAULT_SEED, MonteCarloPoint, compute_snapshot
 from pounding.simulation import Cancelled
 from pounding.units import UNIT_SYSTEMS, unit_system
 
-__all__ = ["PoundingModel", "DIMENSIONS"]
+__all__ = ["DIMENSIONS", "PoundingModel"]
 
 _EXECUTOR = ThreadPoolExecutor(max_workers=2, thread_name_prefix="pounding-mc")
 """Shared by all sessions: at most two studies at a time (each uses every core)."""

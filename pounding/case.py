@@ -18,7 +18,7 @@ from .presets import preset_description, preset_names, preset_text
 from .structures import BoucWen, Building, Storey
 from .units import SI, UnitSystem, unit_system
 
-__all__ = ["Case", "load_case", "case_from_dict", "preset_names", "preset_description", "DEFAULT_PRESET"]
+__all__ = ["DEFAULT_PRESET", "Case", "case_from_dict", "load_case", "preset_description", "preset_names"]
 
 DEFAULT_PRESET = "section5-T2-0.4"
 

@@ -34,16 +34,16 @@ from numba import njit
 from .errors import CaseError
 
 __all__ = [
-    "Contact",
     "CONTACT_MODELS",
-    "jankowski_damping_ratio",
-    "linear_damping_ratio",
+    "Contact",
     "contact_force",
     "hertz_peak_penetration",
-    "undamped_peak_force",
-    "peak_force_ratio",
     "impact_peak_force",
+    "jankowski_damping_ratio",
+    "linear_damping_ratio",
     "opposed_peak_force_ratio",
+    "peak_force_ratio",
+    "undamped_peak_force",
 ]
 
 CONTACT_MODELS = ("jankowski", "hertz", "hertzdamp", "linear")

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-__all__ = ["CaseError", "SimulationError", "ConvergenceError"]
+__all__ = ["CaseError", "ConvergenceError", "SimulationError"]
 
 
 class CaseError(ValueError):

@@ -58,14 +58,14 @@ from .response import (
 )
 
 __all__ = [
-    "PaperEstimate",
-    "Estimate",
-    "GapCurve",
-    "estimate",
-    "paper_estimate",
-    "force_versus_gap",
     "DEFAULT_TARGET_PROBABILITY",
     "PAPER_VARIANCE_METHODS",
+    "Estimate",
+    "GapCurve",
+    "PaperEstimate",
+    "estimate",
+    "force_versus_gap",
+    "paper_estimate",
 ]
 
 PAPER_VARIANCE_METHODS = ("eq28", "exact")

@@ -16,13 +16,13 @@ import numpy as np
 from .errors import CaseError
 
 __all__ = [
-    "KanaiTajimi",
     "CloughPenzien",
-    "ShinozukaSato",
     "Excitation",
-    "record_rng",
+    "KanaiTajimi",
+    "ShinozukaSato",
     "ground_acceleration",
     "ground_accelerations",
+    "record_rng",
 ]
 
 

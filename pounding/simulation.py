@@ -21,13 +21,13 @@ from .errors import CaseError, SimulationError
 from .excitation import ground_accelerations
 
 __all__ = [
+    "Cancelled",
     "Settings",
     "SimulationResult",
     "TimeHistory",
-    "Cancelled",
+    "integrate",
     "simulate",
     "simulate_record",
-    "integrate",
 ]
 
 _FAILURES = {

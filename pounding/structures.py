@@ -18,7 +18,7 @@ from scipy.linalg import eigh
 
 from .errors import CaseError
 
-__all__ = ["BoucWen", "Storey", "Building", "bouc_wen_rate", "hysteresis"]
+__all__ = ["BoucWen", "Building", "Storey", "bouc_wen_rate", "hysteresis"]
 
 
 def _finite(field_name: str, value) -> float:

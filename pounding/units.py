@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["UnitSystem", "SI", "KGF_CM_S", "UNIT_SYSTEMS", "unit_system", "STANDARD_GRAVITY"]
+__all__ = ["KGF_CM_S", "SI", "STANDARD_GRAVITY", "UNIT_SYSTEMS", "UnitSystem", "unit_system"]
 
 STANDARD_GRAVITY = 9.80665
 """[m/s^2], the kilogram-force is this many newtons."""

@@ -19,7 +19,7 @@ from .estimator import estimate
 from .simulation import simulate
 from .structures import BoucWen, Building, Storey
 
-__all__ = ["PAPER_TABLES", "READINGS", "ASSUMPTIONS", "ValidationRow", "validate", "AccuracyRow", "accuracy", "accuracy_cases"]
+__all__ = ["ASSUMPTIONS", "PAPER_TABLES", "READINGS", "AccuracyRow", "ValidationRow", "accuracy", "accuracy_cases", "validate"]
 
 PAPER_TABLES = {
     # table: (preset pattern, {T2: (paper "exact" MN, paper "proposed" MN)})

@@ -8,7 +8,7 @@ from __future__ import annotations
 import tomllib
 from importlib import resources
 
-__all__ = ["preset_names", "preset_text", "preset_description"]
+__all__ = ["preset_description", "preset_names", "preset_text"]
 
 
 def _files() -> dict:
