@@ -74,14 +74,15 @@ class Lags:
         return np.transpose(self.before, (0, 2, 1))
 
 
-def pair_lags(case) -> Lags:
+def pair_lags(case, periods: float = WINDOW, count: int = 40) -> Lags:
+    """The normalized autocovariance at ``count`` lags up to ``periods`` mean periods."""
     model = pair_state_space(case, linearize_pair(case))
     outputs = contact_output_matrix(case, model)
     rows = np.array([outputs[0] - outputs[1], outputs[2] - outputs[3]])
     covariance = model.covariance()
     sigma = np.sqrt(np.diag(rows @ covariance @ rows.T))
     omega = sigma[1] / sigma[0]
-    lags = np.linspace(0.02, WINDOW, 40) * 2.0 * math.pi / omega
+    lags = np.linspace(0.02, periods, count) * 2.0 * math.pi / omega
     before = np.array([(rows @ expm(model.matrix * s) @ covariance @ rows.T / np.outer(sigma, sigma)).T for s in lags])
     return Lags(lags, before, omega)
 

@@ -1,0 +1,109 @@
+"""What the impacts add to the largest approach speed: a chain of approaches.
+
+Reproduces the table of "A chain of approaches" in docs/estimator.md. A
+diagnosis, not part of the estimator.
+
+After an impact at speed v the pair leaves the gap d at e v (the law's
+restitution), and the next approach is the first upward crossing of d by the
+motion restarting from X = d, V = -e v. Its law is taken from the linearized
+pair's Gaussian motion conditioned on (X, V) alone: Z(s) given Z(0) = z is
+Gaussian with mean R(s) z and covariance I - R(s) R(s)^T, R(s) the normalized
+autocovariance of Z = (X / sigma_X, V / sigma_V) (a Markov approximation: the
+other states keep their law given X and V, and the ground keeps forcing).
+Rice's intensity of upward crossings of d under that law, times the
+probability of none before, gives the first approach's density over
+(lag, speed). Sampling that chain over a record's duration gives E[V_max^p]
+with impacts; the free motion is the same chain restarting from (d, +v), the
+next upward crossing after one. Their ratio, "what the impacts add", is set
+against the simulated one (impacting motion over the same records without
+contact) and against what the estimator's time cut adds to Rice's count.
+Stationary cases only: the chain starts in the stationary state.
+
+    python3 docs/approach_chain.py    # about 5 min on 2 cores
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+from clump_models import _phi, pair_lags  # noqa: E402  (beside this script)
+from error_decomposition import RATE_CASES, approach_speeds, rice_expected_power  # noqa: E402
+
+from pounding.estimator import _expected_maximum, estimate  # noqa: E402
+from pounding.validation import accuracy_cases  # noqa: E402
+
+SPEEDS = np.linspace(0.0, 6.0, 121)  # [sigma_V]
+PERIODS, LAGS = 12.0, 480  # the first approach is looked for over 12 mean periods
+CHAINS, RECORDS, SEED = 4000, 200, 11
+
+
+def first_approach(lags, u: float, start: float) -> np.ndarray:
+    """Density of the first upward crossing of u after Z(0) = (u, start), over
+    (lag, speed) on ``lags.lags`` x :data:`SPEEDS`, per unit lag and speed."""
+    after = lags.after
+    mean = after @ np.array([u, start])
+    cov = np.eye(2)[None] - np.einsum("sij,skj->sik", after, after)
+    k11 = np.maximum(cov[:, 0, 0], 1e-12)
+    level = _phi((u - mean[:, 0]) / np.sqrt(k11)) / np.sqrt(k11)
+    mu = mean[:, 1] + cov[:, 1, 0] / k11 * (u - mean[:, 0])
+    sd = np.sqrt(np.maximum(cov[:, 1, 1] - cov[:, 1, 0] ** 2 / k11, 1e-12))
+    speed = SPEEDS[None, :]
+    rice = lags.omega * level[:, None] * speed * _phi((speed - mu[:, None]) / sd[:, None]) / sd[:, None]
+    total = np.trapezoid(rice, SPEEDS, axis=1)
+    steps = np.diff(lags.lags)
+    none_before = np.exp(-np.concatenate([[0.0], np.cumsum(0.5 * (total[1:] + total[:-1]) * steps)]))
+    return rice * none_before[:, None]
+
+
+def chain_expected_power(lags, u: float, restart: float, duration: float, power: float) -> float:
+    """E[V_max^p] / sigma_V^p over ``duration`` [s] of the chain whose motion
+    restarts from (u, restart x v) after an approach at v."""
+    step = (lags.lags[1] - lags.lags[0]) * (SPEEDS[1] - SPEEDS[0])
+    tables = [np.cumsum(first_approach(lags, u, restart * v).ravel() * step) for v in SPEEDS]
+    fresh_rate = lags.omega / (2.0 * math.pi) * math.exp(-0.5 * u * u)  # Rice's, for a motion that has forgotten
+    rng = np.random.default_rng(SEED)
+    largest = np.zeros(CHAINS)
+    for k in range(CHAINS):
+        time = rng.exponential(1.0 / fresh_rate)
+        speed = math.sqrt(-2.0 * math.log(1.0 - rng.random()))  # Rayleigh
+        while time < duration:
+            largest[k] = max(largest[k], speed)
+            table = tables[min(int(round(speed / (SPEEDS[1] - SPEEDS[0]))), SPEEDS.size - 1)]
+            draw = rng.random()
+            if draw < table[-1]:  # an approach within the lags
+                lag, index = divmod(min(int(np.searchsorted(table, draw)), table.size - 1), SPEEDS.size)
+                time += lags.lags[lag]
+                speed = SPEEDS[index]
+            else:  # none: the motion has forgotten the last one
+                time += lags.lags[-1] + rng.exponential(1.0 / fresh_rate)
+                speed = math.sqrt(-2.0 * math.log(1.0 - rng.random()))
+    return float(np.mean(largest**power))
+
+
+def main() -> None:
+    print("| case | q | gap / sigma_X | impacts add, simulated | chain of approaches | time cut: estimator / Rice |")
+    print("|---|---|---|---|---|---|")
+    for case in accuracy_cases():
+        if case.name not in RATE_CASES:
+            continue
+        result = estimate(case)
+        power = 1.0 if case.contact.model == "linear" else 1.2
+        u = case.contact.gap / result.sigma_relative_displacement
+        impacting, free_motion = approach_speeds(case, RECORDS)
+        simulated = [np.mean([max(speeds.max(initial=0.0), 0.0) ** power for speeds in group]) for group in (impacting, free_motion)]
+        lags = pair_lags(case, PERIODS, LAGS)
+        duration = case.excitation.duration
+        chain = chain_expected_power(lags, u, -case.contact.restitution, duration, power) / chain_expected_power(lags, u, 1.0, duration, power)
+        cut = _expected_maximum(result.crossings, np.array([case.contact.gap]), lambda v: v**power, power)[0]
+        print(f"| {case.name} | {result.crossings.bandwidth:.2f} | {u:.2f} | {simulated[0] / simulated[1] - 1:+.1%} | {chain - 1:+.1%} "
+              f"| {cut / rice_expected_power(result, power) - 1:+.1%} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
