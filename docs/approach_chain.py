@@ -19,7 +19,7 @@ against the simulated one (impacting motion over the same records without
 contact) and against what the estimator's time cut adds to Rice's count.
 Stationary cases only: the chain starts in the stationary state.
 
-    python3 docs/approach_chain.py    # about 5 min on 2 cores
+    python3 docs/approach_chain.py    # about 30 s
 """
 
 from __future__ import annotations
