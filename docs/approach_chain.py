@@ -36,14 +36,12 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from clump_models import _phi, pair_lags  # noqa: E402  (beside this script)
-from error_decomposition import RATE_CASES, approach_speeds, rice_expected_power  # noqa: E402
+from clump_models import _phi, pair_lags, pair_rows  # noqa: E402  (beside this script)
+from error_decomposition import RATE_CASES, approach_speeds, largest_expected_power, rice_expected_power  # noqa: E402
 
 from scipy.linalg import expm  # noqa: E402
 
 from pounding.estimator import _expected_maximum, estimate  # noqa: E402
-from pounding.linearization import linearize_pair, pair_state_space  # noqa: E402
-from pounding.response import contact_output_matrix  # noqa: E402
 from pounding.validation import accuracy_cases  # noqa: E402
 
 SPEEDS = np.linspace(0.0, 6.0, 121)  # [sigma_V]
@@ -56,27 +54,26 @@ def linearized_pair(case):
     the impact's change of state per unit approach speed V = v [1/(m/s)]: the
     colliding floors' velocities change by -(1 + e) m2 / (m1 + m2) v and
     +(1 + e) m1 / (m1 + m2) v (momentum kept, V -> -e V)."""
-    model = pair_state_space(case, linearize_pair(case))
-    outputs = contact_output_matrix(case, model)
-    rows = np.array([outputs[0] - outputs[1], outputs[2] - outputs[3]])
+    model, outputs, rows = pair_rows(case)
     m1, m2 = case.contact_masses
     jump = (1.0 + case.contact.restitution) * (-m2 * outputs[2] + m1 * outputs[3]) / (m1 + m2)  # the floors' velocity rows are states
     return model, rows, jump
 
 
-def jump_response(case, lags) -> np.ndarray:
+def jump_response(pair, lags) -> np.ndarray:
     """(X / sigma_X, V / sigma_V) at each lag after the impact's velocity jump, per
-    unit approach speed v / sigma_V, carried on by the pair's own dynamics, e^(A s)."""
-    model, rows, jump = linearized_pair(case)
+    unit approach speed v / sigma_V, carried on by the pair's own dynamics, e^(A s);
+    ``pair`` from :func:`linearized_pair`."""
+    model, rows, jump = pair
     sigma = np.sqrt(np.diag(rows @ model.covariance() @ rows.T))
     return np.array([rows @ expm(model.matrix * lag) @ jump * sigma[1] for lag in lags.lags]) / sigma
 
 
-def linear_impacts_expected_power(case, power: float, paths: int = 4000, time_step: float = 0.002) -> tuple[float, float]:
+def linear_impacts_expected_power(case, pair, power: float, paths: int = 4000, time_step: float = 0.002) -> tuple[float, float]:
     """E[V_max^p] of the linearized pair simulated from rest (exact discretization
     of its Gaussian motion, filter included) with instantaneous impacts at the gap
-    (the velocity jump of :func:`linearized_pair`), and without [(m/s)^p]."""
-    model, rows, jump = linearized_pair(case)
+    (the velocity jump of :func:`linearized_pair`, ``pair``), and without [(m/s)^p]."""
+    model, rows, jump = pair
     transition = expm(model.matrix * time_step)
     covariance = model.covariance()
     values, vectors = np.linalg.eigh(covariance - transition @ covariance @ transition.T)
@@ -155,14 +152,15 @@ def main() -> None:
         power = 1.0 if case.contact.model == "linear" else 1.2
         u = case.contact.gap / result.sigma_relative_displacement
         impacting, free_motion = approach_speeds(case, RECORDS)
-        simulated = [np.mean([max(speeds.max(initial=0.0), 0.0) ** power for speeds in group]) for group in (impacting, free_motion)]
+        simulated = [largest_expected_power(group, power) for group in (impacting, free_motion)]
         lags = pair_lags(case, PERIODS, LAGS)
         duration = case.excitation.duration
         free = chain_expected_power(lags, u, 1.0, duration, power)
         chain = chain_expected_power(lags, u, -case.contact.restitution, duration, power) / free
-        whole = chain_expected_power(lags, u, 1.0, duration, power, jump_response(case, lags)) / free
+        pair = linearized_pair(case)
+        whole = chain_expected_power(lags, u, 1.0, duration, power, jump_response(pair, lags)) / free
         cut = _expected_maximum(result.crossings, np.array([case.contact.gap]), lambda v: v**power, power)[0]
-        linear = linear_impacts_expected_power(case, power)
+        linear = linear_impacts_expected_power(case, pair, power)
         print(f"| {case.name} | {result.crossings.bandwidth:.2f} | {u:.2f} | {simulated[0] / simulated[1] - 1:+.1%} "
               f"| {linear[0] / linear[1] - 1:+.1%} | {chain - 1:+.1%} "
               f"| {whole - 1:+.1%} | {cut / rice_expected_power(result, power) - 1:+.1%} |", flush=True)

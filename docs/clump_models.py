@@ -35,10 +35,10 @@ from scipy.special import erfc
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from error_decomposition import ONE_SIDED, rice_expected_power  # noqa: E402  (beside this script)
+from error_decomposition import ONE_SIDED, contact_motion, rice_expected_power, upcrossing_speeds  # noqa: E402  (beside this script)
 
 import pounding.estimator as estimator  # noqa: E402
-from pounding import integrate, load_case, simulate  # noqa: E402
+from pounding import load_case, simulate  # noqa: E402
 from pounding.excitation import ground_accelerations  # noqa: E402
 from pounding.linearization import linearize_pair, pair_state_space  # noqa: E402
 from pounding.response import contact_output_matrix  # noqa: E402
@@ -74,11 +74,17 @@ class Lags:
         return np.transpose(self.before, (0, 2, 1))
 
 
-def pair_lags(case, periods: float = WINDOW, count: int = 40) -> Lags:
-    """The normalized autocovariance at ``count`` lags up to ``periods`` mean periods."""
+def pair_rows(case):
+    """The linearized pair's state space, its contact-floor output rows
+    (:func:`~pounding.response.contact_output_matrix`) and the rows of X and V."""
     model = pair_state_space(case, linearize_pair(case))
     outputs = contact_output_matrix(case, model)
-    rows = np.array([outputs[0] - outputs[1], outputs[2] - outputs[3]])
+    return model, outputs, np.array([outputs[0] - outputs[1], outputs[2] - outputs[3]])
+
+
+def pair_lags(case, periods: float = WINDOW, count: int = 40) -> Lags:
+    """The normalized autocovariance at ``count`` lags up to ``periods`` mean periods."""
+    model, _, rows = pair_rows(case)
     covariance = model.covariance()
     sigma = np.sqrt(np.diag(rows @ covariance @ rows.T))
     omega = sigma[1] / sigma[0]
@@ -158,18 +164,13 @@ def expected_power(intensity, speeds, power=1.2):
 
 def free_speeds(case, gaps, records) -> np.ndarray:
     """Each record's largest up-crossing speed of each gap by the free relative motion."""
-    free = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=10.0))
-    level_1, level_2 = case.contact.levels
     out = np.zeros((len(gaps), records))
     for i, record in enumerate(ground_accelerations(case.excitation, SEED, np.arange(records))):
-        history = integrate(free, record, case.excitation.time_step)
-        x = history.penetration + 10.0
-        v = history.velocity[:, history.floor(1, level_1)] - history.velocity[:, history.floor(2, level_2)]
+        x, v = contact_motion(case, record, contact=False)
         for k, gap in enumerate(gaps):
-            up = np.flatnonzero((x[:-1] < gap) & (x[1:] >= gap))
-            if up.size:
-                share = (gap - x[up]) / (x[up + 1] - x[up])
-                out[k, i] = max(np.max(v[up] + share * (v[up + 1] - v[up])), 0.0)
+            crossings = upcrossing_speeds(x, v, gap)
+            if crossings.size:
+                out[k, i] = max(np.max(crossings), 0.0)
     return out
 
 

@@ -61,21 +61,36 @@ from pounding.validation import accuracy_cases  # noqa: E402
 RECORDS, SEED = 300, 11
 
 
+def contact_motion(case, record, contact: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """X = x1 - x2 [m] and V [m/s] of the contact floors over ``record``, with
+    contact or without it (the gap moved to 10 m)."""
+    model = case if contact else dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=10.0))
+    history = integrate(model, record, case.excitation.time_step)
+    level_1, level_2 = case.contact.levels
+    velocity = history.velocity[:, history.floor(1, level_1)] - history.velocity[:, history.floor(2, level_2)]
+    return history.penetration + model.contact.gap, velocity
+
+
+def upcrossing_speeds(x, v, level: float) -> np.ndarray:
+    """v at each upward crossing of ``level`` by x, interpolated between samples."""
+    up = np.flatnonzero((x[:-1] < level) & (x[1:] >= level))
+    share = (level - x[up]) / (x[up + 1] - x[up])
+    return v[up] + share * (v[up + 1] - v[up])
+
+
+def largest_expected_power(speeds_by_record, power: float) -> float:
+    """E[V_max^p], V_max each record's largest crossing speed (0 without one)."""
+    return float(np.mean([max(speeds.max(initial=0.0), 0.0) ** power for speeds in speeds_by_record]))
+
+
 def free_motion_speeds(case) -> np.ndarray:
     """Each record's largest upward crossing speed of the gap by X = x1 - x2
     without contact (0 if X never reaches the gap) [m/s]."""
-    gap = case.contact.gap
-    free = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=10.0))
-    level_1, level_2 = case.contact.levels
     speeds = np.zeros(RECORDS)
     for i, record in enumerate(ground_accelerations(case.excitation, SEED, np.arange(RECORDS))):
-        history = integrate(free, record, case.excitation.time_step)
-        x = history.penetration + 10.0
-        v = history.velocity[:, history.floor(1, level_1)] - history.velocity[:, history.floor(2, level_2)]
-        up = np.flatnonzero((x[:-1] < gap) & (x[1:] >= gap))
-        if up.size:
-            share = (gap - x[up]) / (x[up + 1] - x[up])
-            speeds[i] = np.max(v[up] + share * (v[up + 1] - v[up]))
+        crossings = upcrossing_speeds(*contact_motion(case, record, contact=False), case.contact.gap)
+        if crossings.size:
+            speeds[i] = np.max(crossings)
     return speeds
 
 
@@ -171,17 +186,10 @@ SPEED_LEVELS = np.array([0.0, 1.0, 2.0, 2.5, 3.0])  # [sigma_V]
 def approach_speeds(case, records: int) -> tuple[list, list]:
     """Each record's upward crossing speeds of the gap by the impacting motion
     (its approaches) and by the free motion (the same record, no contact)."""
-    free = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=10.0))
-    level_1, level_2 = case.contact.levels
     impacting, free_motion = [], []
     for record in ground_accelerations(case.excitation, SEED, np.arange(records)):
-        for model, offset, out in ((case, 0.0, impacting), (free, 10.0 - case.contact.gap, free_motion)):
-            history = integrate(model, record, case.excitation.time_step)
-            x = history.penetration + offset  # X - gap
-            v = history.velocity[:, history.floor(1, level_1)] - history.velocity[:, history.floor(2, level_2)]
-            up = np.flatnonzero((x[:-1] < 0.0) & (x[1:] >= 0.0))
-            share = -x[up] / (x[up + 1] - x[up])
-            out.append(v[up] + share * (v[up + 1] - v[up]))
+        impacting.append(upcrossing_speeds(*contact_motion(case, record), case.contact.gap))
+        free_motion.append(upcrossing_speeds(*contact_motion(case, record, contact=False), case.contact.gap))
     return impacting, free_motion
 
 
@@ -199,7 +207,7 @@ def rates_table(records: int = 200) -> None:
         levels = SPEED_LEVELS * result.sigma_relative_velocity
         counts = [sum(int(np.sum(speeds > level)) for speeds in group) for group in (impacting, free_motion) for level in levels]
         ratios = np.array(counts[: levels.size]) / np.maximum(counts[levels.size :], 1)
-        largest = [np.mean([max(speeds.max(initial=0.0), 0.0) ** power for speeds in group]) for group in (impacting, free_motion)]
+        largest = [largest_expected_power(group, power) for group in (impacting, free_motion)]
         u = case.contact.gap / result.sigma_relative_displacement
         print(f"| {case.name} | {result.crossings.bandwidth:.2f} | {u:.2f} | {2.0 / math.erfc(-u / math.sqrt(2.0)):.2f} | "
               + " | ".join(f"{r:.2f}" for r in ratios) + f" | {largest[0] / largest[1]:.3f} |", flush=True)
