@@ -74,10 +74,11 @@ class Lags:
         return np.transpose(self.before, (0, 2, 1))
 
 
-def pair_rows(case):
+def pair_rows(case, linearized=None):
     """The linearized pair's state space, its contact-floor output rows
-    (:func:`~pounding.response.contact_output_matrix`) and the rows of X and V."""
-    model = pair_state_space(case, linearize_pair(case))
+    (:func:`~pounding.response.contact_output_matrix`) and the rows of X and V;
+    ``linearized`` (from :func:`~pounding.linearization.linearize_pair`) if already at hand."""
+    model = pair_state_space(case, linearize_pair(case) if linearized is None else linearized)
     outputs = contact_output_matrix(case, model)
     return model, outputs, np.array([outputs[0] - outputs[1], outputs[2] - outputs[3]])
 

@@ -1,0 +1,264 @@
+"""The yielding pairs' heavy tail: a kurtosis from the residual, and a count that uses it.
+
+Reproduces the tables of "The free motion's heavy tail" in docs/estimator.md.
+A diagnosis, not part of the estimator.
+
+The linearized motion Y1 of an output (X or V) is Gaussian; the response Yr to
+the linearization's residual r is not. To first order in r the fourth
+cumulant of Y = Y1 + Yr is 4 E[Y1^3 Yr] (E[Y1 Yr] = 0, and the other terms are
+of order r^2). Only the third Wiener chaos of r meets Y1^3, so with the
+storey's chaos coefficients t_(3,a) (``pounding.linearization.residual``),
+c_i(tau) = Cov(Y1(t), xi_i(t - tau)) in the storey's whitened coordinates xi
+and h(tau) the impulse response from the storey's z equation to Y,
+
+    E[Y1^3 Yr] = sum over storeys int_0^inf h(tau) sum_a t_(3,a) 3! / (a! (3-a)!) 3! c_1^a c_2^(3-a) d tau
+
+(the diagram formula: E[He_3(eta) He_a(xi_1) He_b(xi_2)] = 3! rho_1^a rho_2^b).
+The excess kurtosis is that over (sigma_Y1^2 + sigma_Yr^2)^2.
+
+A count that uses it: Winterstein's Hermite model Y / sigma = kappa (U + h (U^3 - 3 U)),
+U standard normal, h matched to the kurtosis exactly (Gauss-Hermite moments)
+and kappa = (1 + 6 h^2)^-1/2, applied to X and to V. An upward crossing of the
+gap d faster than v comes at sigma_X p_X(d) E[V; V > v] / sigma_V per unit
+of omega = sigma_V / sigma_X, in closed form:
+p_X(d) sigma_X = phi(a_d) / (kappa (1 + 3 h (a_d^2 - 1))) and
+E[V; V > v] / sigma_V = kappa phi(a_v) (1 + h (a_v^2 - 1)), a the Gaussian
+levels of d and v (the Gaussian count is h = 0). Vanmarcke's clumps are taken
+at r^2 = a_d^2 + a_v^2. A negative excess (a lighter tail) is left Gaussian.
+
+    python3 docs/non_gaussian.py            # the check and the grid's free motion, about 2 min
+    python3 docs/non_gaussian.py --impacts  # both counts with the time cut and with the linearized
+                                            # pair's instantaneous impacts, stationary grid, about 10 min
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+from scipy.linalg import expm
+from scipy.optimize import brentq
+from scipy.special import ndtr
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+from approach_chain import linear_impacts_expected_power, linearized_pair  # noqa: E402  (beside this script)
+from clump_models import _phi, pair_rows  # noqa: E402
+from error_decomposition import DOUBLE_BARRIER, approach_speeds, contact_motion, largest_expected_power, upcrossing_speeds  # noqa: E402
+
+from pounding import load_case  # noqa: E402
+from pounding.excitation import ground_accelerations  # noqa: E402
+from pounding.linearization import linearize_pair  # noqa: E402
+from pounding.linearization.residual import _bouc_wen_rates, _storeys, residual_response  # noqa: E402
+from pounding.estimator import estimate  # noqa: E402
+from pounding.validation import accuracy_cases  # noqa: E402
+
+RECORDS, IMPACT_RECORDS, SEED = 300, 200, 11
+SETTLED = 5.0  # [s] the build-up from rest left out of the simulated kurtosis
+CHECK_CASES = ("section5-T2-0.4", "section5-T2-0.8", "section6-T2-0.4", "section6-T2-0.8")
+_NODES, _WEIGHTS = np.polynomial.hermite_e.hermegauss(40)
+_WEIGHTS = _WEIGHTS / _WEIGHTS.sum()
+
+
+def fourth_cumulant_first_order(model, linearized, outputs, count: int = 6000) -> np.ndarray:
+    """4 E[Y1^3 Yr] of each output row (over the pair's state) [output unit^4]."""
+    storeys = _storeys(model, linearized)
+    covariance = model.covariance()
+    values, vectors = np.linalg.eig(model.matrix)
+    span = min(60.0, 25.0 / float(np.min(-values.real)))  # e^-25: the slowest mode has died out
+    lags = np.linspace(0.0, span, count)
+    propagators = ((vectors[None] * np.exp(np.outer(lags, values))[:, None, :]) @ np.linalg.inv(vectors)).real  # e^(A tau)
+    total = np.zeros(outputs.shape[0])
+    for storey in storeys:
+        loads = np.linalg.solve(storey.whitening, storey.rows @ covariance)  # L^-1 R P
+        lagged = np.einsum("an,tmn,om->toa", loads, propagators, outputs)  # c(tau) = L^-1 R P e^(A^T tau) out^T
+        impulse = np.einsum("om,tm->to", outputs, propagators[:, :, storey.input_state])
+        third = storey.chaos[0]  # t_(3, a)
+        moment = sum(third[a] * 36.0 / (math.factorial(a) * math.factorial(3 - a)) * lagged[..., 0] ** a * lagged[..., 1] ** (3 - a)
+                     for a in range(4))
+        total += np.trapezoid(impulse * moment, lags, axis=0)
+    return 4.0 * total
+
+
+def excess_kurtosis(case) -> np.ndarray:
+    """First-order excess kurtosis of X and V of the linearized pair with the residual's response."""
+    linearized = linearize_pair(case)
+    model, _, rows = pair_rows(case, linearized)
+    variance = np.einsum("ki,ij,kj->k", rows, model.covariance(), rows) + np.diag(residual_response(model, linearized, rows))
+    return fourth_cumulant_first_order(model, linearized, rows) / variance**2
+
+
+def hermite_coefficient(excess: float) -> float:
+    """h of Y = kappa (U + h He_3(U)) with the given excess kurtosis (0 if not positive)."""
+    if excess <= 0.0:
+        return 0.0
+    he3 = _NODES**3 - 3.0 * _NODES
+
+    def mismatch(h):
+        y = _NODES + h * he3
+        return np.sum(_WEIGHTS * y**4) / (1.0 + 6.0 * h * h) ** 2 - 3.0 - excess
+
+    return brentq(mismatch, 0.0, 0.3)  # below 1/3 the transform is monotone
+
+
+def gaussian_level(y, h: float):
+    """a with (a + h (a^3 - 3 a)) / sqrt(1 + 6 h^2) = y (Cardano: one real root for 0 <= h < 1/3)."""
+    y = np.asarray(y, dtype=float) * math.sqrt(1.0 + 6.0 * h * h)
+    if h == 0.0:
+        return y
+    p, q = (1.0 - 3.0 * h) / h, -y / h
+    root = np.sqrt(0.25 * q * q + p**3 / 27.0)
+    return np.cbrt(-0.5 * q + root) + np.cbrt(-0.5 * q - root)
+
+
+def expected_power(result, power: float, h_x: float = 0.0, h_v: float = 0.0, time_cut: bool = False, points: int = 600) -> float:
+    """E[V_max^p] from the Hermite count (Gaussian for h = 0) over the estimator's sigma
+    history, with Vanmarcke's clumps, and with the time cut 1 / P(X < d) or without."""
+    crossings = result.crossings
+    gap = result.case.contact.gap
+    kappa_x, kappa_v = 1.0 / math.sqrt(1.0 + 6.0 * h_x * h_x), 1.0 / math.sqrt(1.0 + 6.0 * h_v * h_v)
+    clumping = DOUBLE_BARRIER * crossings.bandwidth**1.2
+    speeds = np.linspace(0.0, 12.0 * crossings.sigma_v.max(), points)
+    expected = np.zeros(points)
+    for sigma_x, sigma_v, weight in zip(crossings.sigma_x, crossings.sigma_v, crossings.weights):
+        a_d, a_v = float(gaussian_level(gap / sigma_x, h_x)), gaussian_level(speeds / sigma_v, h_v)
+        level = _phi(a_d) / (kappa_x * (1.0 + 3.0 * h_x * (a_d * a_d - 1.0)))
+        faster = kappa_v * _phi(a_v) * (1.0 + h_v * (a_v * a_v - 1.0))
+        r = np.hypot(a_d, a_v)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            clumps = np.where(r > 1e-9, np.minimum(1.0, -np.expm1(-clumping * r) / -np.expm1(-0.5 * r * r)), 1.0)
+        below = ndtr(a_d) if time_cut else 1.0
+        expected += weight * sigma_v / sigma_x * level * faster / below * clumps
+    return float(np.trapezoid(-np.expm1(-expected), speeds**power))
+
+
+def _kurtosis(samples) -> float:
+    samples = samples - samples.mean()
+    return float(np.mean(samples**4) / np.mean(samples**2) ** 2)
+
+
+def check_table(trajectories: int = 2000, duration: float = 30.0, step: float = 0.004) -> None:
+    """E[Y1^3 Yr] / sigma_Y1^4 in closed form against the linearized pair driven by its own
+    residual, sampled (three seeds: the sampled fourth moments of the Section 6 frames' heavy Yr scatter)."""
+    print("| case | X: closed form | X: sampled, 3 seeds | V: closed form | V: sampled, 3 seeds |")
+    print("|---|---|---|---|---|")
+    for name in CHECK_CASES:
+        case = load_case(name)
+        linearized = linearize_pair(case)
+        model, _, rows = pair_rows(case, linearized)
+        variance = np.einsum("ki,ij,kj->k", rows, model.covariance(), rows)
+        closed = fourth_cumulant_first_order(model, linearized, rows) / 4.0 / variance**2
+        sampled = np.array([_sampled_third_moment(model, linearized, rows, trajectories, duration, step, seed) for seed in (2, 5, 9)])
+        print(f"| {name} | {closed[0]:+.3f} | " + ", ".join(f"{s:+.3f}" for s in sampled[:, 0])
+              + f" | {closed[1]:+.3f} | " + ", ".join(f"{s:+.3f}" for s in sampled[:, 1]) + " |", flush=True)
+
+
+def _sampled_third_moment(model, linearized, rows, trajectories, duration, step, seed) -> np.ndarray:
+    """E[Y1^3 Yr] / sigma_Y1^4 by stepping the linearized pair exactly under its white noise
+    (stationary start) and a copy driven by the residual evaluated along it (from rest),
+    as ``residual_response_sampled`` does for the variances; the last 6 s are kept."""
+    n = model.size
+    blocks = np.zeros((2 * n, 2 * n))
+    blocks[:n, :n], blocks[:n, n:], blocks[n:, n:] = -model.matrix, model.noise_covariance, model.matrix.T
+    exponential = expm(blocks * step)
+    transition = exponential[n:, n:].T
+    values, vectors = np.linalg.eigh(0.5 * ((transition @ exponential[:n, n:]) + (transition @ exponential[:n, n:]).T))
+    noise_root = vectors * np.sqrt(np.clip(values, 0.0, None))
+    hold = np.linalg.solve(model.matrix, transition - np.eye(n))
+    rng = np.random.default_rng(seed)
+    values, vectors = np.linalg.eigh(model.covariance())
+    state = rng.standard_normal((trajectories, n)) @ (vectors * np.sqrt(np.clip(values, 0.0, None))).T
+    driven = np.zeros((trajectories, n))
+    storeys = _storeys(model, linearized)
+    linear, response = [], []
+    steps = round(duration / step)
+    for index in range(steps):
+        forcing = np.zeros((trajectories, n))
+        for storey in storeys:
+            building = linearized[storey.building]
+            law = building.building.storeys[storey.storey].bouc_wen
+            velocity, z = state @ storey.rows[0], state @ storey.rows[1]
+            residual = _bouc_wen_rates(velocity, z, law.A, law.beta, law.gamma, law.n) - building.c_e[storey.storey] * velocity - building.k_e[storey.storey] * z
+            forcing += np.outer(residual, hold[:, storey.input_state])
+        driven = driven @ transition.T + forcing
+        state = state @ transition.T + rng.standard_normal((trajectories, n)) @ noise_root.T
+        if (steps - index) * step <= 6.0 and index % 5 == 0:
+            linear.append(state @ rows.T)
+            response.append(driven @ rows.T)
+    linear, response = np.concatenate(linear), np.concatenate(response)
+    return np.mean(linear**3 * response, axis=0) / np.mean(linear**2, axis=0) ** 2
+
+
+def free_grid_table() -> None:
+    """The grid's free motion (no contact, 300 records): kurtosis simulated and predicted;
+    the Gaussian and the Hermite count's E[V_max^p] against the simulated one."""
+    print("| case | gap / sigma_X | kurtosis of X: simulated / first order | kurtosis of V: simulated / first order "
+          "| Gaussian count / free motion | Hermite count / free motion |")
+    print("|---|---|---|---|---|---|")
+    errors = []
+    for case in accuracy_cases():
+        result = estimate(case)
+        power = 1.0 if case.contact.model == "linear" else 1.2
+        excess = excess_kurtosis(case)
+        largest, x_samples, v_samples = [], [], []
+        settled = int(SETTLED / case.excitation.time_step)
+        for record in ground_accelerations(case.excitation, SEED, np.arange(RECORDS)):
+            x, v = contact_motion(case, record, contact=False)
+            largest.append(max(upcrossing_speeds(x, v, case.contact.gap).max(initial=0.0), 0.0))
+            x_samples.append(x[settled::5])
+            v_samples.append(v[settled::5])
+        target = float(np.mean(np.array(largest) ** power))
+        gaussian = expected_power(result, power) / target - 1.0
+        hermite = expected_power(result, power, *(hermite_coefficient(e) for e in excess)) / target - 1.0
+        errors.append((case.excitation.stationary, gaussian, hermite))
+        print(f"| {case.name} | {case.contact.gap / result.sigma_relative_displacement:.2f} "
+              f"| {_kurtosis(np.concatenate(x_samples)):.2f} / {3.0 + excess[0]:.2f} | {_kurtosis(np.concatenate(v_samples)):.2f} / {3.0 + excess[1]:.2f} "
+              f"| {gaussian:+.1%} | {hermite:+.1%} |", flush=True)
+    _summary(np.array([e[1:] for e in errors if e[0]]), ("Gaussian", "Hermite"), "stationary cases")
+
+
+def impacts_table() -> None:
+    """E[V_max^p] of the approaches, 2 x 2: the Gaussian or the Hermite count, with the time cut
+    (the estimator's count) or with what the linearized pair's instantaneous impacts add
+    (``approach_chain.linear_impacts_expected_power``, 4,000 paths), against the simulated
+    impacting motion (200 records)."""
+    print("| case | gap / sigma_X | Gaussian, time cut (the estimator) | Hermite, time cut | Gaussian x linearized impacts "
+          "| Hermite x linearized impacts |")
+    print("|---|---|---|---|---|---|")
+    errors = []
+    for case in accuracy_cases():
+        if not case.excitation.stationary:
+            continue  # the linearized pair is simulated in its stationary law
+        result = estimate(case)
+        power = 1.0 if case.contact.model == "linear" else 1.2
+        h = [hermite_coefficient(e) for e in excess_kurtosis(case)]
+        impacting, _ = approach_speeds(case, IMPACT_RECORDS)
+        target = largest_expected_power(impacting, power)
+        with_impacts, without = linear_impacts_expected_power(case, linearized_pair(case), power)
+        added = with_impacts / without
+        row = [expected_power(result, power, time_cut=True), expected_power(result, power, *h, time_cut=True),
+               expected_power(result, power) * added, expected_power(result, power, *h) * added]
+        row = [value / target - 1.0 for value in row]
+        errors.append(row)
+        print(f"| {case.name} | {case.contact.gap / result.sigma_relative_displacement:.2f} | " + " | ".join(f"{e:+.1%}" for e in row) + " |",
+              flush=True)
+    _summary(np.array(errors), ("Gaussian, time cut", "Hermite, time cut", "Gaussian x impacts", "Hermite x impacts"), "cases")
+
+
+def _summary(errors: np.ndarray, labels, what: str) -> None:
+    errors = np.abs(errors)
+    print()
+    for label, column in zip(labels, errors.T):
+        print(f"{label}: within 10 % on {int(np.sum(column <= 0.10))} of {column.size} {what}, within 5 % on {int(np.sum(column <= 0.05))}, "
+              f"median {np.median(column):.1%}")
+
+
+if __name__ == "__main__":
+    if "--impacts" in sys.argv[1:]:
+        impacts_table()
+    else:
+        check_table()
+        print()
+        free_grid_table()
