@@ -65,9 +65,11 @@ def test_recommended_beats_the_paper_where_the_paper_is_weakest():
 
 
 def test_nearly_elastic_perfectly_plastic_frames_are_overestimated():
-    """The documented high side: the Section 6 frames (alpha = 0.02), where the
-    one-pass residual overshoots (+14 % for T2 = 0.8 s). Before the residual
-    the same case was 15 % low; it must now lie on the safe side."""
+    """The documented high side: the Section 6 frames (alpha = 0.02), +14 % for
+    T2 = 0.8 s. Their Gaussian free-motion count is right (+2 %), so the time
+    cut's generous count of returns is not offset there (docs/estimator.md).
+    Before the residual the same case was 15 % low; it must now lie on the
+    safe side."""
     case = load_case("section6-T2-0.8")
     mean, error = _monte_carlo(case)
     estimated = estimate(case).force_expected
