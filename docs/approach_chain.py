@@ -22,8 +22,18 @@ the linearized pair itself simulated from rest with instantaneous impacts (the
 velocity jump at each upward crossing of the gap): what the chains approximate,
 and how much of the impacts' effect a Gaussian model can hold at all.
 
+With ``--first-return`` it measures the chain's two approximations on that
+linearized pair with instantaneous impacts, for a few cases: the law of the next
+approach after an impact (Rice's intensity times Poisson's probability of none
+before, from the exact state just after the impact, against the exact first
+crossing simulated from the same states), and the state before an impact (the
+free motion's given X = d, V = v, against the impacting pair's own: its states
+just before its impacts, regressed on the approach speed). Here the gap is
+taken in the linearized pair's own sigma_X, as the simulation sees it.
+
     python3 docs/approach_chain.py         # 8 cases, about 3 min
     python3 docs/approach_chain.py --all   # every stationary case of the grid, about 15 min
+    python3 docs/approach_chain.py --first-return   # the chain's two approximations, 8 cases, about 20 min
 """
 
 from __future__ import annotations
@@ -69,31 +79,43 @@ def jump_response(pair, lags) -> np.ndarray:
     return np.array([rows @ expm(model.matrix * lag) @ jump * sigma[1] for lag in lags.lags]) / sigma
 
 
-def linear_impacts_expected_power(case, pair, power: float, paths: int = 4000, time_step: float = 0.002) -> tuple[float, float]:
-    """E[V_max^p] of the linearized pair simulated from rest (exact discretization
-    of its Gaussian motion, filter included) with instantaneous impacts at the gap
-    (the velocity jump of :func:`linearized_pair`, ``pair``), and without [(m/s)^p]."""
+def _linear_pair_paths(case, pair, impacts: bool, paths: int, time_step: float, keep_after: float | None = None):
+    """The linearized pair simulated from rest (exact discretization of its Gaussian
+    motion, filter included), with instantaneous impacts at the gap or without.
+    Returns each path's largest upward crossing speed of the gap [m/s] and, given
+    ``keep_after`` [s], the states just before the impacts after that time and
+    their approach speeds."""
     model, rows, jump = pair
     transition = expm(model.matrix * time_step)
     covariance = model.covariance()
     values, vectors = np.linalg.eigh(covariance - transition @ covariance @ transition.T)
     noise = vectors * np.sqrt(np.maximum(values, 0.0))  # the step's forcing, rank-deficient
     gap, steps = case.contact.gap, int(round(case.excitation.duration / time_step))
-    out = []
-    for impacts in (True, False):
-        rng = np.random.default_rng(SEED)  # the same forcing with and without impacts
-        state, largest = np.zeros((paths, transition.shape[0])), np.zeros(paths)
-        for _ in range(steps):
-            before = state @ rows[0]
-            state = state @ transition.T + rng.standard_normal(state.shape) @ noise.T
-            up = (before < gap) & (state @ rows[0] >= gap)
-            if up.any():
-                speed = np.maximum(state[up] @ rows[1], 0.0)
-                largest[up] = np.maximum(largest[up], speed)
-                if impacts:
-                    state[up] += np.outer(speed, jump)
-        out.append(float(np.mean(largest**power)))
-    return out[0], out[1]
+    rng = np.random.default_rng(SEED)  # the same forcing with and without impacts
+    state, largest = np.zeros((paths, transition.shape[0])), np.zeros(paths)
+    kept, speeds = [], []
+    for index in range(steps):
+        before = state @ rows[0]
+        state = state @ transition.T + rng.standard_normal(state.shape) @ noise.T
+        up = (before < gap) & (state @ rows[0] >= gap)
+        if up.any():
+            speed = np.maximum(state[up] @ rows[1], 0.0)
+            largest[up] = np.maximum(largest[up], speed)
+            if impacts:
+                if keep_after is not None and index * time_step > keep_after:
+                    kept.append(state[up].copy())
+                    speeds.append(speed)
+                state[up] += np.outer(speed, jump)
+    if keep_after is None:
+        return largest
+    return largest, np.concatenate(kept), np.concatenate(speeds)
+
+
+def linear_impacts_expected_power(case, pair, power: float, paths: int = 4000, time_step: float = 0.002) -> tuple[float, float]:
+    """E[V_max^p] of the linearized pair simulated from rest with instantaneous
+    impacts at the gap (the velocity jump of :func:`linearized_pair`, ``pair``),
+    and without [(m/s)^p]."""
+    return tuple(float(np.mean(_linear_pair_paths(case, pair, impacts, paths, time_step) ** power)) for impacts in (True, False))
 
 
 def first_approach(lags, u: float, start: float, shift: np.ndarray | None = None) -> np.ndarray:
@@ -102,7 +124,13 @@ def first_approach(lags, u: float, start: float, shift: np.ndarray | None = None
     (lags, 2) is added to the conditional mean of Z."""
     after = lags.after
     mean = after @ np.array([u, start]) + (0.0 if shift is None else shift)
-    cov = np.eye(2)[None] - np.einsum("sij,skj->sik", after, after)
+    return first_crossing(lags, u, mean, np.eye(2)[None] - np.einsum("sij,skj->sik", after, after))
+
+
+def first_crossing(lags, u: float, mean: np.ndarray, cov: np.ndarray) -> np.ndarray:
+    """The same for a Gaussian Z with ``mean`` (lags, 2) and ``cov`` (lags, 2, 2) at
+    each lag: Rice's intensity of upward crossings of u times the probability of
+    none before (Poisson)."""
     k11 = np.maximum(cov[:, 0, 0], 1e-12)
     level = _phi((u - mean[:, 0]) / np.sqrt(k11)) / np.sqrt(k11)
     mu = mean[:, 1] + cov[:, 1, 0] / k11 * (u - mean[:, 0])
@@ -119,8 +147,14 @@ def chain_expected_power(lags, u: float, restart: float, duration: float, power:
     """E[V_max^p] / sigma_V^p over ``duration`` [s] of the chain whose motion
     restarts from (u, restart x v) after an approach at v, or, given ``jump``
     (:func:`jump_response`), from the whole state at the approach plus the jump."""
+    return sampled_chain([first_approach(lags, u, restart * v, None if jump is None else jump * v) for v in SPEEDS], lags, u, duration, power)
+
+
+def sampled_chain(densities, lags, u: float, duration: float, power: float) -> float:
+    """E[V_max^p] / sigma_V^p of the chain whose next approach after one at
+    SPEEDS[i] (in sigma_V) has the density ``densities[i]`` over (lag, speed)."""
     step = (lags.lags[1] - lags.lags[0]) * (SPEEDS[1] - SPEEDS[0])
-    tables = [np.cumsum(first_approach(lags, u, restart * v, None if jump is None else jump * v).ravel() * step) for v in SPEEDS]
+    tables = [np.cumsum(density.ravel() * step) for density in densities]
     fresh_rate = lags.omega / (2.0 * math.pi) * math.exp(-0.5 * u * u)  # Rice's, for a motion that has forgotten
     rng = np.random.default_rng(SEED)
     largest = np.zeros(CHAINS)
@@ -139,6 +173,93 @@ def chain_expected_power(lags, u: float, restart: float, duration: float, power:
                 time += lags.lags[-1] + rng.exponential(1.0 / fresh_rate)
                 speed = math.sqrt(-2.0 * math.log(1.0 - rng.random()))
     return float(np.mean(largest**power))
+
+
+FIRST_RETURN_CASES = (
+    "section5-T2-0.4", "section6-T2-0.4", "section6-T2-0.8", "mdof-3+2-floor2", "s5-T2-0.8 G0x4pi2", "T1 1.2 T2 2.0",
+    "s5-T2-0.4 G0x0.25", "elastic 1.2/0.4 gap6cm",
+)
+SETTLED = 5.0  # [s] impacts before this are left out of the pre-impact states
+
+
+def exact_first_returns(case, pair, states, horizon: float, time_step: float = 0.002) -> tuple[np.ndarray, np.ndarray]:
+    """Lag [s] and speed [m/s] of the first upward crossing of the gap after each
+    post-impact state (rows of ``states``), the linearized pair simulated exactly
+    (NaN if none within ``horizon`` [s])."""
+    model, rows, _ = pair
+    transition = expm(model.matrix * time_step)
+    covariance = model.covariance()
+    values, vectors = np.linalg.eigh(covariance - transition @ covariance @ transition.T)
+    noise = vectors * np.sqrt(np.maximum(values, 0.0))
+    rng = np.random.default_rng(SEED)
+    state = states.copy()
+    lag, speed = np.full(len(state), np.nan), np.full(len(state), np.nan)
+    waiting = np.ones(len(state), dtype=bool)
+    for index in range(int(horizon / time_step)):
+        before = state @ rows[0]
+        state = state @ transition.T + rng.standard_normal(state.shape) @ noise.T
+        up = waiting & (before < case.contact.gap) & (state @ rows[0] >= case.contact.gap)
+        lag[up], speed[up] = (index + 1) * time_step, state[up] @ rows[1]
+        waiting &= ~up
+        if not waiting.any():
+            break
+    return lag, speed
+
+
+def _whole_state_density(pair, lags, propagators, u: float, start: np.ndarray, spread: np.ndarray) -> np.ndarray:
+    """:func:`first_crossing` for the pair's state at the impact, after its jump,
+    Gaussian with mean ``start`` and covariance ``spread``, carried on by e^(A s)."""
+    model, rows, _ = pair
+    covariance = model.covariance()
+    sigma = np.sqrt(np.diag(rows @ covariance @ rows.T))
+    mean = np.einsum("ij,ljk,k->li", rows, propagators, start) / sigma
+    lagged = np.einsum("ij,ljk,km,lnm,pn->lip", rows, propagators, spread - covariance, propagators, rows) + rows @ covariance @ rows.T
+    return first_crossing(lags, u, mean, lagged / np.outer(sigma, sigma))
+
+
+def first_return_table(records: int = 4000) -> None:
+    """The chain's two approximations, measured on the linearized pair with
+    instantaneous impacts: the law of the next approach after an impact
+    (Poisson, from the exact state after the impact, against the exact first
+    crossing) and the state before an impact (the free motion's given X = d,
+    V = v, against the impacting pair's own, a regression on v of the states
+    sampled before its impacts after the first 5 s)."""
+    print("| case | gap / sigma_X | first return, median (mean periods) | P(return faster than sigma_V): exact / chain's law "
+          "| P(faster than 2 sigma_V): exact / chain's law | impacts add: linearized pair | whole-state chain "
+          "| whole-state chain, the impacting pair's own state before an impact |")
+    print("|---|---|---|---|---|---|---|---|")
+    for case in accuracy_cases():
+        if case.name not in FIRST_RETURN_CASES:
+            continue
+        power = 1.0 if case.contact.model == "linear" else 1.2
+        pair = linearized_pair(case)
+        model, rows, jump = pair
+        covariance = model.covariance()
+        sigma = np.sqrt(np.diag(rows @ covariance @ rows.T))
+        u = case.contact.gap / sigma[0]
+        largest, before, speeds = _linear_pair_paths(case, pair, True, records, 0.002, keep_after=SETTLED)
+        free_largest = _linear_pair_paths(case, pair, False, records, 0.002)
+        linear = np.mean(largest**power) / np.mean(free_largest**power)
+        lags = pair_lags(case, PERIODS, LAGS)
+        propagators = np.array([expm(model.matrix * lag) for lag in lags.lags])
+        pick = np.random.default_rng(SEED).choice(len(speeds), min(1500, len(speeds)), replace=False)
+        after = before[pick] + np.outer(speeds[pick], jump)
+        lag, exact = exact_first_returns(case, pair, after, lags.lags[-1])
+        laws = [_whole_state_density(pair, lags, propagators, u, state, np.zeros_like(covariance)) for state in after[:300]]
+        law = np.mean([np.trapezoid(density, lags.lags, axis=0) for density in laws], axis=0)  # over speed
+        faster = [(np.mean(exact > level * sigma[1]), np.trapezoid(law[SPEEDS >= level], SPEEDS[SPEEDS >= level])) for level in (1.0, 2.0)]
+        duration = case.excitation.duration
+        free = chain_expected_power(lags, u, 1.0, duration, power)
+        whole = chain_expected_power(lags, u, 1.0, duration, power, jump_response(pair, lags)) / free
+        design = np.column_stack([np.ones_like(speeds), speeds])
+        fit, *_ = np.linalg.lstsq(design, before, rcond=None)
+        residual = before - design @ fit
+        spread = residual.T @ residual / len(speeds)
+        own = sampled_chain([_whole_state_density(pair, lags, propagators, u, fit[0] + (fit[1] + jump) * v * sigma[1], spread) for v in SPEEDS],
+                            lags, u, duration, power) / free
+        period = 2.0 * math.pi / lags.omega
+        print(f"| {case.name} | {u:.2f} | {np.nanmedian(lag) / period:.3f} | " + " | ".join(f"{e:.3f} / {c:.3f}" for e, c in faster)
+              + f" | {linear - 1:+.1%} | {whole - 1:+.1%} | {own - 1:+.1%} |", flush=True)
 
 
 def main() -> None:
@@ -167,4 +288,7 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    main()
+    if "--first-return" in sys.argv[1:]:
+        first_return_table()
+    else:
+        main()
