@@ -38,7 +38,6 @@ import sys
 from pathlib import Path
 
 import numpy as np
-from scipy.linalg import expm
 from scipy.optimize import brentq
 from scipy.special import ndtr
 
@@ -51,7 +50,7 @@ from error_decomposition import DOUBLE_BARRIER, approach_speeds, contact_motion,
 from pounding import load_case  # noqa: E402
 from pounding.excitation import ground_accelerations  # noqa: E402
 from pounding.linearization import linearize_pair  # noqa: E402
-from pounding.linearization.residual import _bouc_wen_rates, _storeys, residual_response  # noqa: E402
+from pounding.linearization.residual import _storeys, residual_response, sampled_residual_paths  # noqa: E402
 from pounding.estimator import estimate  # noqa: E402
 from pounding.validation import accuracy_cases  # noqa: E402
 
@@ -156,37 +155,13 @@ def check_table(trajectories: int = 2000, duration: float = 30.0, step: float = 
 
 
 def _sampled_third_moment(model, linearized, rows, trajectories, duration, step, seed) -> np.ndarray:
-    """E[Y1^3 Yr] / sigma_Y1^4 by stepping the linearized pair exactly under its white noise
-    (stationary start) and a copy driven by the residual evaluated along it (from rest),
-    as ``residual_response_sampled`` does for the variances; the last 6 s are kept."""
-    n = model.size
-    blocks = np.zeros((2 * n, 2 * n))
-    blocks[:n, :n], blocks[:n, n:], blocks[n:, n:] = -model.matrix, model.noise_covariance, model.matrix.T
-    exponential = expm(blocks * step)
-    transition = exponential[n:, n:].T
-    values, vectors = np.linalg.eigh(0.5 * ((transition @ exponential[:n, n:]) + (transition @ exponential[:n, n:]).T))
-    noise_root = vectors * np.sqrt(np.clip(values, 0.0, None))
-    hold = np.linalg.solve(model.matrix, transition - np.eye(n))
-    rng = np.random.default_rng(seed)
-    values, vectors = np.linalg.eigh(model.covariance())
-    state = rng.standard_normal((trajectories, n)) @ (vectors * np.sqrt(np.clip(values, 0.0, None))).T
-    driven = np.zeros((trajectories, n))
-    storeys = _storeys(model, linearized)
+    """E[Y1^3 Yr] / sigma_Y1^4 by the sampling of ``residual_response_sampled``
+    (the linearized pair stepped exactly, stationary start, and a copy driven by
+    the residual evaluated along it, from rest); the last 6 s are kept."""
     linear, response = [], []
-    steps = round(duration / step)
-    for index in range(steps):
-        forcing = np.zeros((trajectories, n))
-        for storey in storeys:
-            building = linearized[storey.building]
-            law = building.building.storeys[storey.storey].bouc_wen
-            velocity, z = state @ storey.rows[0], state @ storey.rows[1]
-            residual = _bouc_wen_rates(velocity, z, law.A, law.beta, law.gamma, law.n) - building.c_e[storey.storey] * velocity - building.k_e[storey.storey] * z
-            forcing += np.outer(residual, hold[:, storey.input_state])
-        driven = driven @ transition.T + forcing
-        state = state @ transition.T + rng.standard_normal((trajectories, n)) @ noise_root.T
-        if (steps - index) * step <= 6.0 and index % 5 == 0:
-            linear.append(state @ rows.T)
-            response.append(driven @ rows.T)
+    for state, driven in sampled_residual_paths(model, linearized, trajectories, duration, step, seed, kept=6.0, every=5):
+        linear.append(state @ rows.T)
+        response.append(driven @ rows.T)
     linear, response = np.concatenate(linear), np.concatenate(response)
     return np.mean(linear**3 * response, axis=0) / np.mean(linear**2, axis=0) ** 2
 

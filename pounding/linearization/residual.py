@@ -55,6 +55,7 @@ __all__ = [
     "residual_correlation",
     "residual_response",
     "residual_response_sampled",
+    "sampled_residual_paths",
 ]
 
 CHAOS_ORDERS = (3, 5)
@@ -459,6 +460,31 @@ def residual_response_sampled(
     ndarray, (k,)
     """
     outputs = np.atleast_2d(np.asarray(outputs, dtype=float))
+    squares, samples = np.zeros(outputs.shape[0]), 0
+    for _, driven in sampled_residual_paths(model, linearized, trajectories, duration, step, seed, kept=4.0, every=10):
+        squares += np.mean((driven @ outputs.T) ** 2, axis=0)
+        samples += 1
+    return squares / samples
+
+
+def sampled_residual_paths(
+    model: StateSpace,
+    linearized: tuple[LinearizedBuilding, ...],
+    trajectories: int,
+    duration: float,
+    step: float,
+    seed: int,
+    kept: float,
+    every: int,
+):
+    """The sampling behind :func:`residual_response_sampled`.
+
+    Yields
+    ------
+    state, driven : ndarray, (trajectories, n)
+        The linearized pair's states and those of its copy driven by the
+        residual, every ``every`` steps over the last ``kept`` [s] of ``duration``.
+    """
     n = model.size
     blocks = np.zeros((2 * n, 2 * n))
     blocks[:n, :n], blocks[:n, n:], blocks[n:, n:] = -model.matrix, model.noise_covariance, model.matrix.T
@@ -473,7 +499,6 @@ def residual_response_sampled(
     state = rng.standard_normal((trajectories, n)) @ (vectors * np.sqrt(np.clip(values, 0.0, None))).T
     driven = np.zeros((trajectories, n))
     storeys = _storeys(model, linearized)
-    squares, samples = np.zeros(outputs.shape[0]), 0
     steps = round(duration / step)
     for index in range(steps):
         forcing = np.zeros((trajectories, n))
@@ -486,7 +511,5 @@ def residual_response_sampled(
             forcing += np.outer(residual, hold[:, storey.input_state])
         driven = driven @ transition.T + forcing
         state = state @ transition.T + rng.standard_normal((trajectories, n)) @ noise_root.T
-        if (steps - index) * step <= 4.0 and index % 10 == 0:
-            squares += np.mean((driven @ outputs.T) ** 2, axis=0)
-            samples += 1
-    return squares / samples
+        if (steps - index) * step <= kept and index % every == 0:
+            yield state, driven
