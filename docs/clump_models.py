@@ -35,7 +35,7 @@ from scipy.special import erfc
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from error_decomposition import ONE_SIDED, contact_motion, rice_expected_power, upcrossing_speeds  # noqa: E402  (beside this script)
+from error_decomposition import ONE_SIDED, contact_motion, rice_expected_power, upcrossing_speeds, vanmarcke_clumps  # noqa: E402  (beside this script)
 
 import pounding.estimator as estimator  # noqa: E402
 from pounding import load_case, simulate  # noqa: E402
@@ -153,8 +153,7 @@ def one_sided_intensity(crossings, gaps, velocities) -> np.ndarray:
         u, rho = gaps[:, None] / sigma_x, velocities[None, :] / sigma_v
         below = 1.0 - _q(u)
         r = np.hypot(u, rho)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            clumps = np.where(r > 1e-9, np.minimum(1.0, -np.expm1(-ONE_SIDED * crossings.bandwidth**1.2 * below * r) / -np.expm1(-0.5 * r * r)), 1.0)
+        clumps = vanmarcke_clumps(r, ONE_SIDED * crossings.bandwidth**1.2 * below)
         out += weight * sigma_v / (2.0 * math.pi * sigma_x) * np.exp(-0.5 * (u * u + rho * rho)) / below * clumps
     return out
 

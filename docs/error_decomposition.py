@@ -98,6 +98,13 @@ DOUBLE_BARRIER = math.sqrt(math.pi / 2.0)  # Vanmarcke's constant for crossings 
 ONE_SIDED = math.sqrt(2.0 * math.pi)  # the same derivation for crossings of d alone
 
 
+def vanmarcke_clumps(r, clumping):
+    """Vanmarcke's factor min(1, (1 - exp(-clumping r)) / (1 - exp(-r^2 / 2))) at the
+    envelope level r [sigma], 1 at r = 0; ``clumping`` is his constant times q^1.2."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(r > 1e-9, np.minimum(1.0, -np.expm1(-clumping * r) / -np.expm1(-0.5 * r * r)), 1.0)
+
+
 def _expected_power(
     result, power: float, rate, points: int = 400, gap: float | None = None, clumps: bool = True, barrier: float = DOUBLE_BARRIER
 ) -> float:
@@ -112,10 +119,7 @@ def _expected_power(
     expected = np.zeros(points)
     for sigma_x, sigma_v, weight in zip(crossings.sigma_x, crossings.sigma_v, crossings.weights):
         u, rho = gap / sigma_x, speeds / sigma_v
-        r = np.hypot(u, rho)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            factor = np.where(r > 1e-9, np.minimum(1.0, -np.expm1(-clumping * r) / -np.expm1(-0.5 * r * r)), 1.0)
-        expected += weight * sigma_v / sigma_x * rate(u, rho) * factor
+        expected += weight * sigma_v / sigma_x * rate(u, rho) * vanmarcke_clumps(np.hypot(u, rho), clumping)
     return float(np.trapezoid(-np.expm1(-expected), speeds**power))
 
 

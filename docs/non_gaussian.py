@@ -46,7 +46,14 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from approach_chain import linear_impacts_expected_power, linearized_pair  # noqa: E402  (beside this script)
 from clump_models import _phi, pair_rows  # noqa: E402
-from error_decomposition import DOUBLE_BARRIER, approach_speeds, contact_motion, largest_expected_power, upcrossing_speeds  # noqa: E402
+from error_decomposition import (  # noqa: E402
+    DOUBLE_BARRIER,
+    approach_speeds,
+    contact_motion,
+    largest_expected_power,
+    upcrossing_speeds,
+    vanmarcke_clumps,
+)
 
 from pounding import load_case  # noqa: E402
 from pounding.excitation import ground_accelerations  # noqa: E402
@@ -126,11 +133,8 @@ def expected_power(result, power: float, h_x: float = 0.0, h_v: float = 0.0, tim
         a_d, a_v = float(gaussian_level(gap / sigma_x, h_x)), gaussian_level(speeds / sigma_v, h_v)
         level = _phi(a_d) / (kappa_x * (1.0 + 3.0 * h_x * (a_d * a_d - 1.0)))
         faster = kappa_v * _phi(a_v) * (1.0 + h_v * (a_v * a_v - 1.0))
-        r = np.hypot(a_d, a_v)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            clumps = np.where(r > 1e-9, np.minimum(1.0, -np.expm1(-clumping * r) / -np.expm1(-0.5 * r * r)), 1.0)
         below = ndtr(a_d) if time_cut else 1.0
-        expected += weight * sigma_v / sigma_x * level * faster / below * clumps
+        expected += weight * sigma_v / sigma_x * level * faster / below * vanmarcke_clumps(np.hypot(a_d, a_v), clumping)
     return float(np.trapezoid(-np.expm1(-expected), speeds**power))
 
 
