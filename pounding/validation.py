@@ -14,12 +14,17 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
+import numpy as np
+
 from .case import Case, load_case
 from .estimator import estimate
 from .simulation import simulate
 from .structures import BoucWen, Building, Storey
 
-__all__ = ["ASSUMPTIONS", "PAPER_TABLES", "READINGS", "AccuracyRow", "ValidationRow", "accuracy", "accuracy_cases", "validate"]
+__all__ = [
+    "ASSUMPTIONS", "PAPER_TABLES", "RANDOM_FAMILIES", "READINGS", "AccuracyRow", "ValidationRow", "accuracy", "accuracy_cases",
+    "random_case", "random_cases", "validate",
+]
 
 PAPER_TABLES = {
     # table: (preset pattern, {T2: (paper "exact" MN, paper "proposed" MN)})
@@ -191,6 +196,55 @@ def accuracy_cases() -> list[Case]:
         _vary(s5["0.4"], g0=0.25, gap=0.05, name="s5-T2-0.4 G0x0.25 gap5cm"),
         _vary(s5["0.8"], g0=0.25, gap=0.034, name="s5-T2-0.8 G0x0.25 gap3.4cm"),
     ]
+    return cases
+
+
+RANDOM_FAMILIES = (("SDOF", 30), ("SDOF modulated", 20), ("frames", 20), ("elastic", 15), ("elastic modulated", 5), ("MDOF", 10))
+"""The kinds of pair :func:`random_cases` draws, and how many of each."""
+
+
+def _with_period(building: Building, period: float) -> Building:
+    """``building`` with every storey stiffness scaled so its fundamental period is ``period`` [s]."""
+    factor = (building.periods[0] / period) ** 2
+    storeys = tuple(dataclasses.replace(s, stiffness=s.stiffness * factor) for s in building.storeys)
+    return dataclasses.replace(building, storeys=storeys)
+
+
+def random_case(family: str, rng: np.random.Generator, index: int) -> Case:
+    """One case drawn from the ranges the recommended estimator claims: periods
+    0.2-2 s (log-uniform), G0 x 0.25 to x 4 pi^2 (log-uniform), gap 0-5 cm,
+    restitution 0.4-0.9; ``family`` one of :data:`RANDOM_FAMILIES`, the
+    buildings those of Section 5 (one storey), Section 6 (the two-storey
+    frames, stiffnesses scaled to the drawn periods), the three-storey against
+    two-storey pair, or the Section 5 buildings made elastic."""
+    periods = np.exp(rng.uniform(math.log(0.2), math.log(2.0), 2))
+    g0 = math.exp(rng.uniform(math.log(0.25), math.log(4 * math.pi**2)))
+    gap, restitution = rng.uniform(0.0, 0.05), rng.uniform(0.4, 0.9)
+    base = {
+        "SDOF": load_case("section5-T2-0.4"),
+        "SDOF modulated": load_case("section5-T2-0.4-nonstationary"),
+        "elastic": load_case("section5-T2-0.4"),
+        "elastic modulated": load_case("section5-T2-0.4-nonstationary"),
+        "frames": load_case("section6-T2-0.6"),
+        "MDOF": _mdof_case(),
+    }[family]
+    if family in ("frames", "MDOF"):
+        buildings = tuple(_with_period(b, float(p)) for b, p in zip(base.buildings, periods))
+        base, periods = dataclasses.replace(base, buildings=buildings), (None, None)
+    name = (f"{index:2d} {family} T {base.buildings[0].periods[0] if periods[0] is None else periods[0]:.2f}/"
+            f"{base.buildings[1].periods[0] if periods[1] is None else periods[1]:.2f} s G0x{g0:.2f} "
+            f"gap {100 * gap:.1f} cm e {restitution:.2f}")
+    return _vary(base, g0=g0, gap=gap, restitution=restitution, periods=tuple(periods),
+                 elastic=family.startswith("elastic"), name=name)
+
+
+def random_cases(seed: int) -> list[Case]:
+    """Cases drawn by :func:`random_case`, :data:`RANDOM_FAMILIES` in order, from a seeded generator."""
+    rng = np.random.default_rng(seed)
+    cases = []
+    for family, count in RANDOM_FAMILIES:
+        for _ in range(count):
+            cases.append(random_case(family, rng, len(cases) + 1))
     return cases
 
 
