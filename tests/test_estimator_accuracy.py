@@ -4,13 +4,20 @@ documented table, so this is not a replay of it)."""
 
 import dataclasses
 import math
+import re
 
 import numpy as np
 import pytest
 
 from pounding import load_case, simulate
-from pounding.estimator import ACCURACY_FREQUENT, estimate
-from pounding.validation import _mdof_case, _vary
+from pounding.estimator import (
+    MEASURED_KANAI_TAJIMI,
+    MODERATE_GAP,
+    NARROW_BAND_LIMIT,
+    RESIDUAL_SHARE_LIMIT,
+    estimate,
+)
+from pounding.validation import _mdof_case, _vary, random_case
 
 RECORDS = 200
 
@@ -37,7 +44,7 @@ def _monte_carlo(case, seed=31):
 )
 def test_recommended_estimate_within_ten_percent(case):
     """Where the gap is below sigma_X the recommended estimate was measured
-    within 10 % on 21 of 26 grid cases; these are among them."""
+    within 10 % on 20 of 26 grid cases; these are among them."""
     mean, error = _monte_carlo(case)
     result = estimate(case)
     assert result.sigma_relative_displacement > case.contact.gap
@@ -98,17 +105,73 @@ def test_rare_pounding_of_yielding_buildings_is_flagged():
     assert "rare pounding" in result.measured_accuracy and "yielding" in result.measured_accuracy
 
 
+def _share(result) -> float:
+    """How much the residual's response adds to sigma_X or sigma_V, the larger."""
+    return max(result.sigma_relative_displacement / result.response.sigma_relative_displacement,
+               result.sigma_relative_velocity / result.response.sigma_relative_velocity) - 1.0
+
+
+def _at_gap(case, gap_over_sigma):
+    sigma = estimate(case).sigma_relative_displacement
+    return dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=gap_over_sigma * sigma))
+
+
 def test_the_measured_accuracy_stated_is_that_of_the_regime():
-    """Frequent pounding (gap below sigma_X): the grid's range; above sigma_X:
-    the rare-pounding range of an elastic or a yielding pair."""
+    """Each regime follows from the estimate's own statistics, and the accuracy
+    line and warnings are those measured for it: frequent pounding (gap below
+    sigma_X / 2, broad band, small residual), a moderate gap, a narrow band, a
+    large residual, rare pounding of an elastic pair."""
     frequent = estimate(load_case("section5-T2-0.4"))
-    assert frequent.measured_accuracy == ACCURACY_FREQUENT["kanai-tajimi"]
-    assert frequent.sigma_relative_displacement > frequent.case.contact.gap
-    elastic = _vary(load_case("section5-T2-0.4"), elastic=True)
-    sigma = estimate(elastic).sigma_relative_displacement
-    rare = estimate(dataclasses.replace(elastic, contact=dataclasses.replace(elastic.contact, gap=2 * sigma)))
+    assert frequent.accuracy_regime == "frequent"
+    assert frequent.case.contact.gap < MODERATE_GAP * frequent.sigma_relative_displacement
+    assert frequent.crossings.bandwidth >= NARROW_BAND_LIMIT and _share(frequent) <= RESIDUAL_SHARE_LIMIT
+    assert MEASURED_KANAI_TAJIMI["frequent"][0] in frequent.measured_accuracy
+    assert not any("pounding simulate" in w and "target probability" not in w for w in frequent.warnings)
+
+    moderate = estimate(_at_gap(load_case("section5-T2-0.4"), 0.75))
+    assert moderate.accuracy_regime == "moderate gap"
+    assert MEASURED_KANAI_TAJIMI["moderate gap"][0] in moderate.measured_accuracy
+    assert any("between sigma_X / 2 and sigma_X" in w for w in moderate.warnings)
+
+    narrow = estimate(_vary(load_case("section5-T2-0.4"), elastic=True, gap=0.01))
+    assert narrow.crossings.bandwidth < NARROW_BAND_LIMIT and narrow.accuracy_regime == "narrow band"
+    assert MEASURED_KANAI_TAJIMI["narrow band"][0] in narrow.measured_accuracy
+    assert any("narrow-band" in w for w in narrow.warnings)
+
+    frames = estimate(load_case("section6-T2-0.8"))
+    assert _share(frames) > RESIDUAL_SHARE_LIMIT and frames.accuracy_regime == "large residual"
+    assert MEASURED_KANAI_TAJIMI["large residual"][0] in frames.measured_accuracy
+    assert any(f"adds {100 * _share(frames):.0f} %" in w for w in frames.warnings)
+
+    rare = estimate(_at_gap(_vary(load_case("section5-T2-0.4"), elastic=True), 2.0))
+    assert rare.accuracy_regime == "rare"
     assert "rare pounding" in rare.measured_accuracy and "elastic" in rare.measured_accuracy
     assert rare.to_dict()["measured_accuracy"] == rare.measured_accuracy
+    assert rare.to_dict()["accuracy_regime"] == "rare"
+
+
+def _stated_range(text):
+    """The lower and upper error [-] of a measured-accuracy text, 'from a % to b %'."""
+    low, high = re.search(r"from ([-+]\d+) % to ([-+]\d+) %", text).groups()
+    return int(low) / 100, int(high) / 100
+
+
+def test_frequent_pounding_claim_holds_on_cases_drawn_afresh():
+    """The range stated for frequent pounding was measured on the grid and on
+    random draws (docs/out_of_sample.py, seeds 2026-2028; ``random_case``); on cases drawn with
+    another seed, the first four the estimator places in that regime must
+    fall within it (Monte Carlo's sampling error allowed)."""
+    rng = np.random.default_rng(7)
+    checked = 0
+    while checked < 4:
+        case = random_case("SDOF", rng, checked)
+        result = estimate(case)
+        if result.accuracy_regime != "frequent":
+            continue
+        low, high = _stated_range(result.measured_accuracy)
+        mean, error = _monte_carlo(case)
+        assert (1 + low) * mean - 3 * error < result.force_expected < (1 + high) * mean + 3 * error, case.name
+        checked += 1
 
 
 def test_impacts_expected_tracks_the_simulated_count_when_pounding_is_frequent():
