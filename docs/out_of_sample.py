@@ -12,10 +12,13 @@ the regime the estimate states (``Estimate.accuracy_regime``): the ranges that
 
     python3 docs/out_of_sample.py                  # the grid and three draws of 100 cases, about 7 min on 2 cores
     python3 docs/out_of_sample.py --seeds 2029     # other draws
+    python3 docs/out_of_sample.py --required-gap   # the gap for 95 % no pounding, simulated there, about 6 min
 """
 
 from __future__ import annotations
 
+import dataclasses
+import math
 import sys
 from pathlib import Path
 
@@ -23,9 +26,10 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
+from pounding import simulate  # noqa: E402
 from pounding.estimator import REGIMES, _yielding, estimate  # noqa: E402
 from pounding.linearization import linearize_pair  # noqa: E402
-from pounding.validation import accuracy, accuracy_cases, random_cases  # noqa: E402
+from pounding.validation import RANDOM_FAMILIES, accuracy, accuracy_cases, random_cases  # noqa: E402
 
 
 def _label(result) -> str:
@@ -71,6 +75,23 @@ def regime_table(sources: dict) -> None:
                   f"{np.median(np.abs(every)):.1%} | {every.min():+.0%} to {every.max():+.0%} |")
 
 
+def required_gap_table(seeds, records: int = 400, target: float = 0.95) -> None:
+    """The gap given for ``target`` probability of no pounding, checked by simulating ``records`` records
+    (seed 9) at that gap: the fraction that pounds, by kind of pair."""
+    limit = 1.0 - target + 2.0 * math.sqrt(target * (1.0 - target) / records)  # two standard errors above the target
+    fractions: dict[str, list[float]] = {}
+    for seed in seeds:
+        for family, case in zip([f for f, count in RANDOM_FAMILIES for _ in range(count)], random_cases(seed)):
+            result = estimate(case, target_probability=target)
+            at_gap = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=result.required_gap))
+            fractions.setdefault(family, []).append(simulate(at_gap, records=records, seed=9).pounding_fraction)
+    print(f"| pairs | cases | fraction pounding at the gap for {target:.0%}: mean | largest | above {limit:.3f} |")
+    print("|---|---|---|---|---|")
+    for family, values in fractions.items():
+        values = np.array(values)
+        print(f"| {family} | {values.size} | {values.mean():.3f} | {values.max():.3f} | {(values > limit).sum()} |")
+
+
 def main(seeds) -> None:
     sources = {"grid": measured(accuracy_cases())}
     for seed in seeds:
@@ -84,4 +105,8 @@ def main(seeds) -> None:
 
 if __name__ == "__main__":
     arguments = sys.argv[1:]
-    main([int(a) for a in arguments[arguments.index("--seeds") + 1:]] if "--seeds" in arguments else [2026, 2027, 2028])
+    seeds = [int(a) for a in arguments[arguments.index("--seeds") + 1:]] if "--seeds" in arguments else [2026, 2027, 2028]
+    if "--required-gap" in arguments:
+        required_gap_table(seeds)
+    else:
+        main(seeds)

@@ -552,11 +552,13 @@ ACCURACY_RARE = {
     "misses most of the pounding caused by plastic drift)",
     ("clough-penzien", False): "from -22 % to +1 % (3 elastic cases tested with a Clough-Penzien spectrum)",
 }
-# The fraction of simulated records that pound at the gap given for 95 % (docs/rare_pounding.py,
-# docs/record_synthesis.py).
+# The fraction of simulated records that pound at the gap given for 95 % (Kanai-Tajimi:
+# docs/out_of_sample.py --required-gap; Clough-Penzien: docs/record_synthesis.py).
 REQUIRED_GAP_CHECK = {
-    ("kanai-tajimi", True): "0.001 to 0.051 on the 4 yielding pairs tested (at most 0.05 within sampling error)",
-    ("kanai-tajimi", False): "0.036 to 0.041 on the 3 elastic pairs tested (on the safe side)",
+    ("kanai-tajimi", True): "0.035 on average over 240 random yielding pairs (400 records each), but up to 0.150: above "
+    "0.072, two standard errors over 0.05, for 22 of them (21 one-storey pairs of the Section 5 law, one three-storey "
+    "against two-storey pair)",
+    ("kanai-tajimi", False): "0.04 on average over 60 random elastic pairs and at most 0.062, within sampling error of 0.05",
     ("clough-penzien", True): "0.002 to 0.106 on the 3 yielding pairs tested with a Clough-Penzien spectrum: "
     "0.089 and 0.106, on the unsafe side, for the Section 5 pairs (plastic drift)",
     ("clough-penzien", False): "0.036 on the elastic pair tested with a Clough-Penzien spectrum (on the safe side)",
