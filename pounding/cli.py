@@ -8,7 +8,9 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
+from functools import partial
 
 EXIT_BAD_INPUT = 2
 
@@ -16,6 +18,7 @@ _EPILOG = """examples:
   pounding cases
   pounding estimate section5-T2-0.4
   pounding simulate section5-T2-0.4 --records 300 --seed 1
+  pounding simulate section5-T2-0.4 --design-gap 0.95 --records 1000
   pounding validate --records 300
   pounding sweep section5-T2-0.4 --vary contact.gap=0:5:11 --records 200 -o results/
   pounding report section5-T2-0.4 -o report.html --records 300
@@ -73,7 +76,8 @@ def _parser() -> argparse.ArgumentParser:
         description="Nonlinear time-history analysis of the case over N seeded synthetic records; "
         "prints the mean extreme pounding force with its standard error and 95%% confidence interval.",
         epilog="examples:\n  pounding simulate section5-T2-0.4 --records 300 --seed 1\n"
-        "  pounding simulate case.toml --records 20 --json > result.json",
+        "  pounding simulate case.toml --records 20 --json > result.json\n"
+        "  pounding simulate section5-T2-0.4 --design-gap 0.95 --records 1000",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     simulate.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
@@ -81,6 +85,9 @@ def _parser() -> argparse.ArgumentParser:
     simulate.add_argument("--seed", type=_non_negative_int, default=0, help="seed of the study (default 0)")
     simulate.add_argument("--tolerance", type=float, default=1e-6, help="relative tolerance of the integrator (default 1e-6)")
     simulate.add_argument("--json", action="store_true", help="print one JSON object (SI units) instead of a table")
+    simulate.add_argument("--design-gap", type=float, metavar="P", default=None,
+                          help="instead, the gap for probability P of no pounding, in (0, 1): a record pounds at a gap "
+                          "exactly when its free relative displacement exceeds it, so the records' free motion gives it")
 
     estimate = commands.add_parser(
         "estimate",
@@ -180,8 +187,11 @@ def _format_force(newtons: float) -> str:
 
 def _simulate(args) -> int:
     from .case import load_case
-    from .simulation import Settings, simulate
+    from .errors import check_probability
+    from .simulation import Settings, design_gap, simulate
 
+    if args.design_gap is not None:
+        check_probability(args.design_gap, "--design-gap")
     case = load_case(args.case)
     settings = Settings(tolerance=args.tolerance)
     bar = _progress_bar(args.records, sys.stderr.isatty())
@@ -189,11 +199,14 @@ def _simulate(args) -> int:
     def progress(done: int, total: int) -> None:
         bar.update(done - bar.n)
 
+    study = simulate if args.design_gap is None else partial(design_gap, target_probability=args.design_gap)
     try:
-        result = simulate(case, records=args.records, seed=args.seed, settings=settings, progress=progress if bar else None)
+        result = study(case, records=args.records, seed=args.seed, settings=settings, progress=progress if bar else None)
     finally:
         if bar is not None:
             bar.close()
+    if args.design_gap is not None:
+        return _print_design_gap(case, result, args)
     if args.json:
         print(json.dumps(result.to_dict()))
         return 0
@@ -204,6 +217,21 @@ def _simulate(args) -> int:
     print(f"95% CI          {_format_force(low)} .. {_format_force(high)}")
     print(f"pounding        {100 * result.pounding_fraction:.1f} % of records, {result.impacts_mean:.2f} impacts per record")
     print(f"peak impact v   {result.impact_velocity_max.mean():.4f} m/s (mean over records)")
+    return 0
+
+
+def _print_design_gap(case, result, args) -> int:
+    from .estimator import estimate
+
+    closed_form = estimate(case, target_probability=result.target_probability).required_gap
+    if args.json:
+        print(json.dumps({"case": case.name, **result.to_dict(), "closed_form_required_gap": closed_form}))
+        return 0
+    print(f"case            {case.name}")
+    print(f"records         {result.n_records} x {case.excitation.duration:g} s, seed {args.seed} (free motion: the case's gap is not used)")
+    bound = f"{100 * result.upper_bound:.2f} cm" if math.isfinite(result.upper_bound) else "n/a: too few records"
+    print(f"gap for {100 * result.target_probability:g} % no pounding   {100 * result.gap:.2f} cm   (90 % confidence bound {bound})")
+    print(f"closed form     {100 * closed_form:.2f} cm   (pounding estimate; docs/estimator.md gives how far it was measured off)")
     return 0
 
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-__all__ = ["CaseError", "ConvergenceError", "SimulationError"]
+__all__ = ["CaseError", "ConvergenceError", "SimulationError", "check_probability"]
 
 
 class CaseError(ValueError):
@@ -35,3 +35,9 @@ class SimulationError(RuntimeError):
 
 class ConvergenceError(RuntimeError):
     """An iteration (e.g. statistical linearization) did not converge."""
+
+
+def check_probability(value, field: str = "target_probability") -> None:
+    """Raise :class:`CaseError` naming ``field`` unless ``value`` lies in (0, 1)."""
+    if isinstance(value, bool) or not (isinstance(value, float | int) and 0.0 < value < 1.0):
+        raise CaseError(field, f"must lie in (0, 1), got {value!r}")

@@ -45,7 +45,7 @@ from numba import njit
 
 from .case import Case
 from .contact import Contact, impact_peak_force, peak_force_ratio, undamped_peak_force
-from .errors import CaseError
+from .errors import CaseError, check_probability
 from .excitation import CloughPenzien
 from .linearization import StateSpace, linearize_pair, pair_state_space
 from .peaks import davenport_peak_factor, envelope_variance, equivalent_stationary
@@ -571,8 +571,8 @@ TAIL_WARNING = (
 )
 REQUIRED_GAP_WARNING = (
     "the gap for the target probability lies where pounding is rare (beyond sigma_X); simulated at the gap "
-    "given for 95 %, the fraction of records that pounded was {range} (docs/estimator.md); check the chosen "
-    "gap with `pounding simulate`"
+    "given for 95 %, the fraction of records that pounded was {range} (docs/estimator.md); size the gap by "
+    "Monte Carlo with `pounding simulate --design-gap`"
 )
 NARROW_BAND_WARNING = (
     "the relative displacement is narrow-band (bandwidth q = {bandwidth:.2f} < {limit}, as for buildings of close "
@@ -648,11 +648,6 @@ def _measured_accuracy(case: Case, linearized, regime: str) -> str:
     return f"measured {span} off Monte Carlo {_WHERE[regime]} ({tally}: the grid and random draws of cases)"
 
 
-def _check_probability(target_probability: float) -> None:
-    if not (isinstance(target_probability, float | int) and 0.0 < target_probability < 1.0):
-        raise CaseError("target_probability", f"must lie in (0, 1), got {target_probability!r}")
-
-
 def estimate(
     case: Case, target_probability: float = DEFAULT_TARGET_PROBABILITY, linearized=None, paper_variance: str = "eq28"
 ) -> Estimate:
@@ -669,7 +664,7 @@ def estimate(
         For the paper's method under an envelope: ``"eq28"`` (as published)
         or ``"exact"`` (see :data:`PAPER_VARIANCE_METHODS`).
     """
-    _check_probability(target_probability)
+    check_probability(target_probability)
     linearized = linearized or linearize_pair(case)
     model, linear, response, crossings = _pair_statistics(case, linearized)
     contact = case.contact

@@ -5,6 +5,7 @@ left column of the paper's Fig. 4, Eq. 10-11).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 import threading
@@ -13,18 +14,20 @@ from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import stdtrit  # Student t quantile; scipy.stats costs a second to import
+from scipy.special import bdtr, stdtrit  # binomial CDF, Student t quantile; scipy.stats costs a second to import
 
 from . import integrator as kernel
 from .case import Case
-from .errors import CaseError, SimulationError
+from .errors import CaseError, SimulationError, check_probability
 from .excitation import ground_accelerations
 
 __all__ = [
     "Cancelled",
+    "DesignGap",
     "Settings",
     "SimulationResult",
     "TimeHistory",
+    "design_gap",
     "integrate",
     "simulate",
     "simulate_record",
@@ -138,6 +141,8 @@ class SimulationResult:
         Largest approach velocity at the onset of an impact [m/s].
     displacement_max : ndarray, shape (records, 2)
         Peak |displacement| of the contact floor of building 1 and 2 [m].
+    relative_displacement_max : ndarray
+        Peak of X = x1 - x2 at the contact floors over the accepted steps [m].
     steps : ndarray
         Accepted integration steps.
     """
@@ -150,6 +155,7 @@ class SimulationResult:
     penetration_max: np.ndarray
     impact_velocity_max: np.ndarray
     displacement_max: np.ndarray
+    relative_displacement_max: np.ndarray
     steps: np.ndarray
     settings: Settings
 
@@ -206,6 +212,7 @@ class SimulationResult:
             "penetration_max": self.penetration_max.tolist(),
             "impact_velocity_max": self.impact_velocity_max.tolist(),
             "displacement_max": self.displacement_max.tolist(),
+            "relative_displacement_max": self.relative_displacement_max.tolist(),
             "units": {"force": "N", "length": "m", "velocity": "m/s", "duration": "s"},
         }
 
@@ -312,9 +319,90 @@ def simulate(
         penetration_max=summaries[:, kernel.S_PENETRATION_MAX].copy(),
         impact_velocity_max=summaries[:, kernel.S_IMPACT_VELOCITY_MAX].copy(),
         displacement_max=summaries[:, [kernel.S_DISPLACEMENT_MAX_1, kernel.S_DISPLACEMENT_MAX_2]].copy(),
+        relative_displacement_max=summaries[:, kernel.S_RELATIVE_MAX].copy(),
         steps=summaries[:, kernel.S_STEPS].astype(np.int64),
         settings=settings,
     )
+
+
+@dataclass(frozen=True)
+class DesignGap:
+    """The gap for a target probability of no pounding, by Monte Carlo.
+
+    Until the first contact the buildings move freely, so a record pounds at
+    gap d exactly when its free relative displacement X = x1 - x2 at the
+    contact floors exceeds d: one simulation without contact gives the
+    pounding fraction at every gap.
+
+    Attributes
+    ----------
+    gap : float
+        Smallest gap at which at most 1 - ``target_probability`` of the
+        records pound: an order statistic of ``peaks`` [m].
+    upper_bound : float
+        One-sided 90 % confidence bound on the gap for the target
+        probability, from the binomial law of the order statistics [m];
+        inf when the records are too few to give one.
+    target_probability : float
+        Probability of no pounding [-].
+    peaks : ndarray
+        Each record's peak free relative displacement [m], in record order.
+    seed : int
+    """
+
+    gap: float
+    upper_bound: float
+    target_probability: float
+    peaks: np.ndarray
+    seed: int
+
+    @property
+    def n_records(self) -> int:
+        return self.peaks.size
+
+    def pounding_fraction(self, gap: float) -> float:
+        """Fraction of the records that pound at ``gap`` [m]."""
+        return float(np.mean(self.peaks > gap))
+
+    def to_dict(self) -> dict:
+        """JSON-ready, SI units."""
+        return {
+            "design_gap": self.gap,
+            "design_gap_upper_bound_90": self.upper_bound if math.isfinite(self.upper_bound) else None,
+            "target_probability": self.target_probability,
+            "records": self.n_records,
+            "seed": self.seed,
+            "peaks": self.peaks.tolist(),
+            "units": {"length": "m"},
+        }
+
+
+def design_gap(
+    case: Case,
+    target_probability: float = 0.95,
+    records: int = 400,
+    seed: int = 0,
+    settings: Settings | None = None,
+    progress: Callable[[int, int], None] | None = None,
+    cancel: threading.Event | None = None,
+) -> DesignGap:
+    """The gap giving ``target_probability`` of no pounding, from the free
+    motion of ``records`` simulated records (the case's gap is not used).
+
+    The records are those :func:`simulate` integrates for the same ``seed``;
+    at the gap returned, :func:`simulate` finds the same records pounding.
+    """
+    check_probability(target_probability)
+    settings = settings or Settings()
+    free = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=2.0 * settings.displacement_limit))
+    result = simulate(free, records=records, seed=seed, settings=settings, progress=progress, cancel=cancel)
+    peaks = result.relative_displacement_max
+    ordered = np.sort(peaks)
+    rank = math.ceil(target_probability * records - 1e-9)  # at most records - rank pound at ordered[rank - 1]
+    # P(ordered[j - 1] >= true gap) = P(Binomial(records, p) <= j - 1); the first j where that reaches 0.9.
+    confident = np.flatnonzero(bdtr(np.arange(records), records, target_probability) >= 0.9)
+    upper = float(ordered[confident[0]]) if confident.size else math.inf
+    return DesignGap(float(ordered[rank - 1]), upper, float(target_probability), peaks, seed)
 
 
 @dataclass(frozen=True)
@@ -427,6 +515,7 @@ def integrate(
             "impacts": int(summary[kernel.S_IMPACTS]),
             "penetration_max": summary[kernel.S_PENETRATION_MAX],
             "impact_velocity_max": summary[kernel.S_IMPACT_VELOCITY_MAX],
+            "relative_displacement_max": summary[kernel.S_RELATIVE_MAX],
             "steps": int(summary[kernel.S_STEPS]),
         },
     )
