@@ -398,7 +398,7 @@ def design_gap(
     result = simulate(free, records=records, seed=seed, settings=settings, progress=progress, cancel=cancel)
     peaks = result.relative_displacement_max
     ordered = np.sort(peaks)
-    rank = math.ceil(target_probability * records - 1e-9)  # at most records - rank pound at ordered[rank - 1]
+    rank = max(1, math.ceil(target_probability * records - 1e-9))  # at most records - rank pound at ordered[rank - 1]
     # P(ordered[j - 1] >= true gap) = P(Binomial(records, p) <= j - 1); the first j where that reaches 0.9.
     confident = np.flatnonzero(bdtr(np.arange(records), records, target_probability) >= 0.9)
     upper = float(ordered[confident[0]]) if confident.size else math.inf
