@@ -20,6 +20,7 @@ derivation gives for crossings of d alone.
     python3 docs/clump_models.py           # the free motion of 5 elastic pairs, about 3 min
     python3 docs/clump_models.py --grid    # the estimator's grid, about 30 min
     python3 docs/clump_models.py --free-grid   # the grid's free motion, about 3 min
+    python3 docs/clump_models.py --draw 2026   # a random draw of docs/out_of_sample.py, by regime, about 45 min
 """
 
 from __future__ import annotations
@@ -42,7 +43,7 @@ from pounding import load_case, simulate  # noqa: E402
 from pounding.excitation import ground_accelerations  # noqa: E402
 from pounding.linearization import linearize_pair, pair_state_space  # noqa: E402
 from pounding.response import contact_output_matrix  # noqa: E402
-from pounding.validation import _vary, accuracy_cases  # noqa: E402
+from pounding.validation import _vary, accuracy_cases, random_cases  # noqa: E402
 
 SEED = 11
 FREE_RECORDS, GRID_RECORDS = 3000, 300
@@ -196,7 +197,13 @@ def free_motion_table() -> None:
             print(f"| {periods[0]}/{periods[1]} | {crossings.bandwidth:.2f} | {gap / sigma:.1f} | {np.mean(speeds > 0):.3f} | " + " | ".join(cells) + " |")
 
 
-def grid_table() -> None:
+COUNT_NAMES = ("Vanmarcke, time cut (the estimator)", "Vanmarcke one side, time cut", "conditional, time cut",
+               "conditional, mirror returns", "time cut, window of down-crossings", "time cut, window both ways")
+
+
+def grid_table(cases=None, by_regime: bool = False) -> None:
+    """Each count's estimate against Monte Carlo on ``cases`` (the grid by default), and, with
+    ``by_regime``, how many within 10 % in each regime the estimate states."""
     counts = [("time cut", "up"), ("mirror", "both"), ("time cut", "down"), ("time cut", "both")]
     print("| case | gap / sigma_X | q | Vanmarcke, time cut (the estimator) | Vanmarcke one side, time cut | conditional, time cut "
           "| conditional, mirror returns | time cut, window of down-crossings | time cut, window both ways |")
@@ -211,11 +218,14 @@ def grid_table() -> None:
 
         return intensity
 
-    errors = []
+    errors, regimes = [], []
     try:
-        for case in accuracy_cases():
+        for case in accuracy_cases() if cases is None else cases:
             mean = simulate(case, records=GRID_RECORDS, seed=SEED).force_max_mean
+            if mean == 0.0:  # no record pounded: no relative error
+                continue
             result = estimator.estimate(case)
+            regimes.append(result.accuracy_regime)
             lags = pair_lags(case)
             variants = [one_sided_intensity] + [
                 lambda self, gaps, velocities, count=count, window=window: conditional_intensity(self, lags, gaps, velocities, count, window)
@@ -235,6 +245,15 @@ def grid_table() -> None:
     print()
     print("within 10 %: " + ", ".join(str(int(n)) for n in (errors <= 0.10).sum(axis=0)) + f" of {len(errors)}; median: "
           + ", ".join(f"{m:.1%}" for m in np.median(errors, axis=0)))
+    if by_regime:
+        regimes = np.array(regimes)
+        print("\n| regime | cases | " + " | ".join(f"within 10 %: {name}" for name in COUNT_NAMES) + " |")
+        print("|---|---|" + "---|" * len(COUNT_NAMES))
+        for regime in estimator.REGIMES:
+            chosen = errors[regimes == regime]
+            if chosen.size:
+                print(f"| {regime} | {len(chosen)} | " + " | ".join(
+                    f"{int(n)} ({m:.1%})" for n, m in zip((chosen <= 0.10).sum(axis=0), np.median(chosen, axis=0))) + " |")
 
 
 def free_grid_table() -> None:
@@ -254,7 +273,9 @@ def free_grid_table() -> None:
 
 
 if __name__ == "__main__":
-    if "--grid" in sys.argv[1:]:
+    if "--draw" in sys.argv[1:]:
+        grid_table(random_cases(int(sys.argv[sys.argv.index("--draw") + 1])), by_regime=True)
+    elif "--grid" in sys.argv[1:]:
         grid_table()
     elif "--free-grid" in sys.argv[1:]:
         free_grid_table()
