@@ -575,9 +575,9 @@ REQUIRED_GAP_WARNING = (
     "Monte Carlo with `pounding simulate --design-gap`"
 )
 NARROW_BAND_WARNING = (
-    "the relative displacement is narrow-band (bandwidth q = {bandwidth:.2f} < {limit}, as for buildings of close "
-    "periods or strongly yielding ones): near the mean position the time cut counts too many fast returns after an "
-    "impact, and far from it Vanmarcke's factor counts the crossings in clumps too long" + _CHECK
+    "the relative displacement is narrow-band (bandwidth q = {bandwidth:.2f} < {limit}): near the mean position the "
+    "time cut counts too many fast returns after an impact, and far from it Vanmarcke's factor counts the crossings "
+    "in clumps too long" + _CHECK
 )
 RESIDUAL_WARNING = (
     "the linearization's residual adds {share:.0f} % to sigma_X or sigma_V (over {limit:.0f} %), as for storeys near "
