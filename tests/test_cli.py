@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from pounding import load_case, preset_names, simulate
+from pounding.estimator import estimate
 
 
 def run(*args, **kwargs):
@@ -31,6 +32,21 @@ def test_simulate_json_matches_the_library():
     np.testing.assert_allclose(data["force_max"], expected.force_max, rtol=1e-12)
     assert data["force_max_mean"] == pytest.approx(expected.force_max_mean)
     assert out.stderr == ""  # no progress bar when stderr is not a terminal
+    closed_form = estimate(load_case("section5-T2-0.8"))  # the two methods side by side
+    assert data["closed_form"]["force_expected"] == pytest.approx(closed_form.force_expected, rel=1e-12)
+    assert data["closed_form"]["paper_force_expected"] == pytest.approx(closed_form.paper.force_expected, rel=1e-12)
+    assert data["closed_form"]["accuracy_regime"] == closed_form.accuracy_regime
+
+
+def test_simulate_table_puts_the_closed_form_beside_with_its_error():
+    out = run("simulate", "section5-T2-0.4", "--records", "6", "--seed", "2")
+    assert out.returncode == 0, out.stderr
+    study = simulate(load_case("section5-T2-0.4"), records=6, seed=2)
+    closed_form = estimate(load_case("section5-T2-0.4"))
+    line = next(line for line in out.stdout.splitlines() if line.strip().startswith("recommended"))
+    assert f"{closed_form.force_expected / 1e6:.4f} MN" in line
+    assert f"{100 * (closed_form.force_expected / study.force_max_mean - 1):+.1f} %" in line
+    assert f"regime        {closed_form.accuracy_regime}:" in out.stdout
 
 
 def test_simulate_table_has_units():
