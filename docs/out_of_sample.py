@@ -26,16 +26,16 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from pounding.estimator import REGIMES, _yielding, estimate  # noqa: E402
-from pounding.simulation import design_gap  # noqa: E402
 from pounding.linearization import linearize_pair  # noqa: E402
+from pounding.simulation import design_gap  # noqa: E402
 from pounding.validation import RANDOM_FAMILIES, accuracy, accuracy_cases, random_cases  # noqa: E402
 
 
-def _label(result) -> str:
-    """The estimator's own regime (``Estimate.accuracy_regime``), rare pounding split by yielding."""
-    if result.accuracy_regime != "rare":
-        return result.accuracy_regime
-    return "rare, yielding" if _yielding(linearize_pair(result.case)) else "rare, elastic"
+def _label(case, row) -> str:
+    """The estimator's own regime (``AccuracyRow.accuracy_regime``), rare pounding split by yielding."""
+    if row.accuracy_regime != "rare":
+        return row.accuracy_regime
+    return "rare, yielding" if _yielding(linearize_pair(case)) else "rare, elastic"
 
 
 def measured(cases) -> list[tuple[str, object, float]]:
@@ -44,7 +44,7 @@ def measured(cases) -> list[tuple[str, object, float]]:
     out = []
     for case, row in zip(cases, accuracy(cases, records=300, seed=11)):
         if row.monte_carlo > 0.0:
-            out.append((_label(estimate(case)), row, row.recommended_error))
+            out.append((_label(case, row), row, row.recommended_error))
     return out
 
 

@@ -322,15 +322,24 @@ def _accuracy(args) -> int:
         print(json.dumps({"records": args.records, "seed": args.seed, "units": {"force": "N"},
                           "rows": [dict(row.__dict__, recommended_error=row.recommended_error, paper_error=row.paper_error) for row in rows]}))
         return 0
+
+    def percent(error):
+        return "n/a" if error is None else f"{100 * error:+.1f} %"
+
     print(f"Monte Carlo: {args.records} records per case, seed {args.seed}; errors are estimate / Monte Carlo - 1.\n")
-    print("| case | gap / sigma_X | Monte Carlo E[F_max] (kN) | s.e. | recommended | paper | P(pounding) MC | P estimate |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| case | regime | gap / sigma_X | Monte Carlo E[F_max] (kN) | s.e. | recommended | paper | P(pounding) MC | P estimate |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for row in rows:
-        paper = "n/a" if row.paper_error is None else f"{100 * row.paper_error:+.1f} %"
-        print(f"| {row.case} | {row.gap_over_sigma:.2f} | {row.monte_carlo / 1e3:.1f} | {100 * row.monte_carlo_std_error / row.monte_carlo:.1f} % "
-              f"| {100 * row.recommended_error:+.1f} % | {paper} | {row.pounding_fraction:.3f} | {row.pounding_probability:.3f} |")
-    for label, errors in (("recommended", [r.recommended_error for r in rows]), ("paper", [r.paper_error for r in rows if r.paper_error is not None])):
-        magnitudes = sorted(abs(e) for e in errors)
+        relative = "n/a" if row.monte_carlo == 0.0 else f"{100 * row.monte_carlo_std_error / row.monte_carlo:.1f} %"
+        print(f"| {row.case} | {row.accuracy_regime} | {row.gap_over_sigma:.2f} | {row.monte_carlo / 1e3:.1f} | {relative} | "
+              f"{percent(row.recommended_error)} | {percent(row.paper_error)} | {row.pounding_fraction:.3f} | {row.pounding_probability:.3f} |")
+    unpounded = sum(row.monte_carlo == 0.0 for row in rows)
+    if unpounded:
+        print(f"\nno record pounded in {unpounded} case(s): no relative error there (n/a); more records would tell")
+    for label, errors in (("recommended", [r.recommended_error for r in rows]), ("paper", [r.paper_error for r in rows])):
+        magnitudes = sorted(abs(e) for e in errors if e is not None)
+        if not magnitudes:
+            continue
         within = sum(m <= 0.10 for m in magnitudes)
         print(f"\n{label}: median |error| {100 * magnitudes[len(magnitudes) // 2]:.1f} %, largest {100 * magnitudes[-1]:.1f} %, "
               f"within 10 %: {within} of {len(magnitudes)}", end="")

@@ -507,15 +507,16 @@ share, and the one-pass response overshoots (docs/estimator.md)."""
 REGIMES = ("frequent", "moderate gap", "narrow band", "large residual", "rare")
 
 
-def accuracy_regime(gap: float, response: ContactResponse, linear: ContactResponse, bandwidth: float) -> str:
-    """Which of :data:`REGIMES` ``gap`` [m] lies in, for the response with the
-    residual's part (``response``) and without (``linear``): the first that
-    applies of rare pounding (gap > sigma_X), a large residual, a narrow band,
-    a moderate gap (gap > sigma_X / 2), else frequent pounding."""
-    sigma_x = response.sigma_relative_displacement
+def accuracy_regime(gap: float, sigma_x: float, residual_share: float, bandwidth: float) -> str:
+    """Which of :data:`REGIMES` ``gap`` [m] lies in: the first that applies of
+    rare pounding (gap > sigma_X [m], with the residual's response), a large
+    residual (``residual_share``, what the residual's response adds to sigma_X
+    or sigma_V, the larger, over :data:`RESIDUAL_SHARE_LIMIT`), a narrow band
+    (``bandwidth`` q of X below :data:`NARROW_BAND_LIMIT`), a moderate gap
+    (gap > sigma_X / 2), else frequent pounding."""
     if gap > sigma_x:
         return "rare"
-    if _residual_share(response, linear) > RESIDUAL_SHARE_LIMIT:
+    if residual_share > RESIDUAL_SHARE_LIMIT:
         return "large residual"
     if bandwidth < NARROW_BAND_LIMIT:
         return "narrow band"
@@ -613,14 +614,11 @@ def _residual_share(response: ContactResponse, linear: ContactResponse) -> float
     ) - 1.0
 
 
-def _warnings(
-    case: Case, linearized, response: ContactResponse, linear: ContactResponse, required_gap: float, bandwidth: float
-) -> tuple[str, ...]:
-    """The measured limits of the recommended estimator that apply to ``case``."""
-    sigma = response.sigma_relative_displacement
+def _warnings(case: Case, linearized, sigma: float, share: float, required_gap: float, bandwidth: float) -> tuple[str, ...]:
+    """The measured limits of the recommended estimator that apply to ``case``
+    (``sigma``: sigma_X [m]; ``share``: the residual's, as in :func:`accuracy_regime`)."""
     gap = case.contact.gap
     key = (_spectrum_kind(case), _yielding(linearized))
-    share = _residual_share(response, linear)
     warnings = []
     if key == ("clough-penzien", True):
         warnings.append(DRIFT_WARNING)
@@ -672,7 +670,8 @@ def estimate(
     impacts = float(crossings.intensity(gap, np.zeros(1))[0, 0])
     required_gap = _required_gap(crossings, target_probability)
     (velocity,) = _expected_maximum(crossings, gap, lambda v: v, 1.0)
-    regime = accuracy_regime(contact.gap, response, linear, crossings.bandwidth)
+    share = _residual_share(response, linear)
+    regime = accuracy_regime(contact.gap, response.sigma_relative_displacement, share, crossings.bandwidth)
     return Estimate(
         case=case,
         force_expected=float(_expected_force_maximum(crossings, gap, contact, case.reduced_mass)[0]),
@@ -689,7 +688,7 @@ def estimate(
         separation_rules=_separation_rules(case, linear),
         paper=paper_estimate(case, linearized, linear, paper_variance, model),
         response=linear,
-        warnings=_warnings(case, linearized, response, linear, required_gap, crossings.bandwidth),
+        warnings=_warnings(case, linearized, response.sigma_relative_displacement, share, required_gap, crossings.bandwidth),
         crossings=crossings,
         accuracy_regime=regime,
         measured_accuracy=_measured_accuracy(case, linearized, regime),

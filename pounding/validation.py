@@ -260,14 +260,18 @@ class AccuracyRow:
     paper: float | None
     pounding_fraction: float
     pounding_probability: float
+    accuracy_regime: str
+    """The estimate's own (:func:`pounding.estimator.accuracy_regime`)."""
 
     @property
-    def recommended_error(self) -> float:
-        return self.recommended / self.monte_carlo - 1.0
+    def recommended_error(self) -> float | None:
+        """estimate / Monte Carlo - 1; None where no record pounded (no relative error)."""
+        return None if self.monte_carlo == 0.0 else self.recommended / self.monte_carlo - 1.0
 
     @property
     def paper_error(self) -> float | None:
-        return None if self.paper is None else self.paper / self.monte_carlo - 1.0
+        """As :attr:`recommended_error`; None also where the paper's law gives no force."""
+        return None if self.paper is None or self.monte_carlo == 0.0 else self.paper / self.monte_carlo - 1.0
 
 
 def accuracy(
@@ -290,6 +294,7 @@ def accuracy(
                 paper=closed_form.paper.force_expected,
                 pounding_fraction=result.pounding_fraction,
                 pounding_probability=closed_form.pounding_probability,
+                accuracy_regime=closed_form.accuracy_regime,
             )
         )
         if progress is not None:

@@ -17,7 +17,7 @@ from pounding.estimator import (
     RESIDUAL_SHARE_LIMIT,
     estimate,
 )
-from pounding.validation import _mdof_case, _vary, random_case
+from pounding.validation import _mdof_case, _vary, accuracy, random_case
 
 RECORDS = 200
 
@@ -266,3 +266,16 @@ def test_narrow_band_pairs_are_flagged_where_vanmarcke_over_clumps():
     mean, error = _monte_carlo(case)
     assert result.force_expected < 0.9 * mean - error
     assert not any("narrow-band" in warning for warning in estimate(load_case("section5-T2-0.4")).warnings)
+
+
+def test_accuracy_rows_carry_the_regime_and_no_relative_error_without_pounding():
+    """``validate --grid``'s rows: a case where no record pounds has no relative error (not a division by
+    zero), and each row states the regime its estimate gives."""
+    wide = _vary(load_case("section5-T2-0.4"), gap=1.0, name="wide gap")  # far beyond any record's peak
+    near = load_case("section5-T2-0.4")
+    rows = accuracy([wide, near], records=2, seed=1)
+    assert rows[0].monte_carlo == 0.0 and rows[0].recommended_error is None and rows[0].paper_error is None
+    assert rows[1].recommended_error == pytest.approx(rows[1].recommended / rows[1].monte_carlo - 1.0)
+    for case, row in zip((wide, near), rows):
+        assert row.accuracy_regime == estimate(case).accuracy_regime
+    assert [row.accuracy_regime for row in rows] == ["rare", "frequent"]
