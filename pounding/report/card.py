@@ -4,8 +4,10 @@ estimates as HTML, styled by :data:`RESULT_CSS`."""
 from __future__ import annotations
 
 import html
+import math
 
-from .display_units import display
+from ..simulation import DesignGap
+from .display_units import Display, display
 from .snapshot import MonteCarloPoint, Snapshot
 
 # --- the result card -----------------------------------------------------------
@@ -15,11 +17,21 @@ def _row(label: str, recommended: str, paper: str, css: str = "") -> str:
     return f'<tr class="{css}"><th>{label}</th><td>{recommended}</td><td>{paper}</td></tr>'
 
 
-def result_html(snapshot: Snapshot, units: str = "SI", monte_carlo: MonteCarloPoint | None = None, monte_carlo_note: str = "") -> str:
+def result_html(
+    snapshot: Snapshot,
+    units: str = "SI",
+    monte_carlo: MonteCarloPoint | None = None,
+    monte_carlo_note: str = "",
+    design_gap: DesignGap | None = None,
+    design_gap_note: str = "",
+) -> str:
     """The result card: recommended and paper's F_e side by side, each with its chain.
 
     ``monte_carlo`` is a study of exactly this case (shown beside F_e);
-    ``monte_carlo_note`` says why none is shown.
+    ``monte_carlo_note`` says why none is shown. ``design_gap`` is the Monte
+    Carlo design gap of this case for the closed form's target probability
+    (shown beside the closed-form gap); ``design_gap_note`` says why none is
+    shown. With neither, the card has no line for it.
     """
     d = display(units)
     e, p, case = snapshot.estimate, snapshot.estimate.paper, snapshot.case
@@ -65,6 +77,7 @@ def result_html(snapshot: Snapshot, units: str = "SI", monte_carlo: MonteCarloPo
         f'<b><span class="required-gap">{d.length(e.required_gap)}</span></b> '
         f"(SRSS {d.length(e.separation_rules['srss'])}, ABS {d.length(e.separation_rules['abs'])}, "
         f"DDC {d.length(e.separation_rules['ddc'])}).</p>"
+        f"{_design_gap_html(snapshot, d, design_gap, design_gap_note)}"
         f'<p class="monte-carlo">Monte Carlo mean F<sub>max</sub>: {mc}</p>'
     )
     summary += f'<p class="measured-accuracy">Recommended F<sub>e</sub>: {html.escape(e.measured_accuracy)} (docs/estimator.md).</p>'
@@ -77,6 +90,31 @@ def result_html(snapshot: Snapshot, units: str = "SI", monte_carlo: MonteCarloPo
         + "</tbody></table>"
         + summary
         + "</div>"
+    )
+
+
+def _design_gap_html(snapshot: Snapshot, d: Display, result: DesignGap | None, note: str) -> str:
+    """The Monte Carlo design gap beside the closed form's, for the same target probability."""
+    e = snapshot.estimate
+    if result is None:
+        if not note:
+            return ""
+        return f'<p class="monte-carlo-gap">Monte Carlo gap for {100 * e.target_probability:.0f} % no pounding: {html.escape(note)}</p>'
+    if result.target_probability != e.target_probability:
+        raise ValueError(f"design_gap is for {result.target_probability}, the closed form for {e.target_probability}: not comparable")
+    bound = (
+        f'90 % upper confidence bound <span class="mc-design-gap-bound">{d.length(result.upper_bound)}</span>'
+        if math.isfinite(result.upper_bound)
+        else '<span class="mc-design-gap-bound">too few records for a 90 % upper confidence bound</span>'
+    )
+    # Below 1 the closed form is the narrower gap: more records would pound at it than the target allows.
+    ratio = f"{e.required_gap / result.gap:.3g}" if result.gap > 0 else "n/a"
+    return (
+        f'<p class="monte-carlo-gap">Monte Carlo gap for {100 * result.target_probability:.0f} % no pounding: '
+        f'<b><span class="mc-design-gap">{d.length(result.gap)}</span></b> '
+        f"({bound}; free motion of "
+        f'<span class="mc-design-gap-records">{result.n_records}</span> records, seed {result.seed}); '
+        f'closed form / Monte Carlo = <span class="design-gap-ratio">{ratio}</span> [-].</p>'
     )
 
 

@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from ..simulation import TimeHistory
+from ..simulation import DesignGap, TimeHistory
 from .display_units import display
 from .snapshot import Snapshot
 
@@ -37,6 +37,7 @@ class Figures:
             "current": cds(gap=[], force=[]),
             "marker": cds(gap=[], force=[]),
             "required": cds(gap=[], probability=[]),
+            "design_gap": cds(gap=[], probability=[]),
             "mc": cds(gap=[], force=[], low=[], high=[], fraction=[]),
             "psd_ground": cds(omega=[], ground=[]),
             "psd_velocity": cds(omega=[], velocity=[]),
@@ -58,6 +59,8 @@ class Figures:
         g.scatter("gap", "force", source=src["current"], color="#1f77b4", size=11, legend_label="current gap")
         g.line("gap", "probability", source=src["required"], color="#2ca02c", line_dash="dashdot", y_range_name="probability",
                legend_label="gap needed for the target")
+        g.line("gap", "probability", source=src["design_gap"], color="black", line_dash="dashdot", y_range_name="probability",
+               legend_label="Monte Carlo gap for the target")
         g.add_layout(Whisker(base="gap", lower="low", upper="high", source=src["mc"], line_color="black"))
         g.scatter("gap", "force", source=src["mc"], color="black", marker="square", size=8, legend_label="Monte Carlo mean F_max (95 % CI)")
         g.scatter("gap", "fraction", source=src["mc"], color="#2ca02c", marker="triangle", size=8, y_range_name="probability",
@@ -94,8 +97,9 @@ class Figures:
     def all(self) -> list:
         return [self.gap, self.psd_ground, self.psd_velocity, *self.hysteresis, self.contact]
 
-    def fill(self, snapshot: Snapshot | None, units: str = "SI", monte_carlo: tuple = ()) -> None:
-        """Show ``snapshot`` (None: empty plots) in ``units``, with Monte Carlo points."""
+    def fill(self, snapshot: Snapshot | None, units: str = "SI", monte_carlo: tuple = (), design_gap: DesignGap | None = None) -> None:
+        """Show ``snapshot`` (None: empty plots) in ``units``, with Monte Carlo
+        points and the Monte Carlo design gap (``design_gap``) of this case."""
         d = display(units)
         fs, ls, vs = d.force_scale, d.length_scale, d.velocity_scale
         src = self.sources
@@ -122,6 +126,10 @@ class Figures:
         _refill(src["marker"], gap=[gap, gap], force=[0.0, top])
         required = snapshot.estimate.required_gap / ls
         _refill(src["required"], gap=[required, required], probability=[0.0, 1.0])
+        if design_gap is None:
+            _refill(src["design_gap"], gap=[], probability=[])
+        else:
+            _refill(src["design_gap"], gap=[design_gap.gap / ls] * 2, probability=[0.0, 1.0])
         points = [m for m in monte_carlo if math.isfinite(m.force_low)]
         _refill(
             src["mc"],

@@ -12,7 +12,7 @@ from ..errors import SimulationError
 from ..estimator import DEFAULT_TARGET_PROBABILITY, Estimate, GapCurve, estimate
 from ..linearization import equivalent_storey_force, linearize_pair
 from ..response import psd_relative_velocity
-from ..simulation import SimulationResult, TimeHistory, simulate_record
+from ..simulation import DesignGap, SimulationResult, TimeHistory, simulate_record
 
 DEFAULT_SEED = 1
 """Seed of the study whose record the hysteresis loops show."""
@@ -73,6 +73,9 @@ class Snapshot:
     seed, record : int
     monte_carlo : tuple of MonteCarloPoint
         Studies of this case (at any gap) to show beside the estimates.
+    design_gap : DesignGap or None
+        The Monte Carlo design gap of this case for the estimate's target
+        probability, to show beside the closed-form gap.
     """
 
     case: Case
@@ -88,6 +91,7 @@ class Snapshot:
     seed: int = DEFAULT_SEED
     record: int = DEFAULT_RECORD
     monte_carlo: tuple = field(default=())
+    design_gap: DesignGap | None = None
 
 
 def gap_grid(case: Case, result: Estimate, points: int = GAP_POINTS) -> np.ndarray:

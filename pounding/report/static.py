@@ -105,13 +105,13 @@ def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None)
             f'<p class="report-note"><i>{REPORT_NOTE}</i> Written {stamp} by pounding.</p>'
             + _case_table(case, units)
             + "<h2>Result</h2>"
-            + result_html(snapshot, units, matching[-1] if matching else None, "not run for this report")
+            + result_html(snapshot, units, matching[-1] if matching else None, "not run for this report", snapshot.design_gap)
             + f"<p>{history_note}</p>"
         ),
         sizing_mode="stretch_width",
     )
     figures = Figures()
-    figures.fill(snapshot, units, snapshot.monte_carlo)
+    figures.fill(snapshot, units, snapshot.monte_carlo, snapshot.design_gap)
     layout = column(
         header,
         figures.gap,
