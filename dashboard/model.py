@@ -6,8 +6,9 @@ file's schema, in the unit system chosen for display, and handed to
 stiffness from period and validates, and its ``CaseError`` names the field
 exactly as a case file would. Every output comes from
 ``pounding.report.compute_snapshot`` (one linearization per change). The
-reduced-sample Monte Carlo runs on a worker thread; its progress and result
-come back to the session's event loop.
+reduced-sample Monte Carlo, and the Monte Carlo design gap
+(``pounding.simulation.design_gap``), run on a worker thread; their progress
+and results come back to the session's event loop.
 
 No Panel here: the view (``app.py``) builds widgets from these parameters.
 """
@@ -17,6 +18,7 @@ from __future__ import annotations
 import contextlib
 import threading
 from concurrent.futures import ThreadPoolExecutor
+from functools import partial
 from typing import Callable
 
 import param
@@ -27,7 +29,7 @@ from pounding.contact import CONTACT_MODELS
 from pounding.errors import CaseError, ConvergenceError, SimulationError
 from pounding.excitation import CloughPenzien
 from pounding.report import DEFAULT_SEED, MonteCarloPoint, compute_snapshot
-from pounding.simulation import Cancelled
+from pounding.simulation import Cancelled, DesignGap, design_gap
 from pounding.units import UNIT_SYSTEMS, unit_system
 
 __all__ = ["DIMENSIONS", "PoundingModel"]
@@ -101,8 +103,8 @@ class PoundingModel(param.Parameterized):
     B1 = param.Number(0.085, bounds=(0.005, 2.0), step=0.005, label="envelope B1 [1/s]", doc="Shinozuka-Sato decay constant B1 (Eq. 9), below B2.")
     B2 = param.Number(0.17, bounds=(0.01, 5.0), step=0.005, label="envelope B2 [1/s]", doc="Shinozuka-Sato decay constant B2 (Eq. 9), above B1.")
 
-    records = param.Integer(40, bounds=(10, 500), step=10, label="records", doc="Records of the reduced-sample Monte Carlo study.")
-    seed = param.Integer(DEFAULT_SEED, bounds=(0, None), label="seed", doc="Seed of the study.")
+    records = param.Integer(40, bounds=(10, 500), step=10, label="records", doc="Records of the reduced-sample Monte Carlo study and of the Monte Carlo design gap.")
+    seed = param.Integer(DEFAULT_SEED, bounds=(0, None), label="seed", doc="Seed of the study and of the design gap's records.")
 
     # --- outputs (not inputs) ---
     snapshot = param.Parameter(None, precedence=-1, doc="pounding.report.Snapshot of the current case, or None when the inputs are invalid.")
@@ -111,6 +113,12 @@ class PoundingModel(param.Parameterized):
     mc_progress = param.Integer(0, bounds=(0, 100), precedence=-1)
     mc_status = param.String("", precedence=-1)
     mc_points = param.List([], precedence=-1, doc="MonteCarloPoint of the current case (any gap).")
+    design_gap_running = param.Boolean(False, precedence=-1)
+    design_gap_progress = param.Integer(0, bounds=(0, 100), precedence=-1)
+    design_gap_status = param.String("", precedence=-1)
+    design_gap_result = param.Parameter(
+        None, precedence=-1, doc="pounding.simulation.DesignGap of the current case (it holds at any gap), or None."
+    )
 
     def __init__(self, schedule: Callable[[Callable[[], None]], None] | None = None, batch=None, **params):
         """``schedule(fn)`` runs ``fn`` on the session's event loop (default: at once);
@@ -123,6 +131,8 @@ class PoundingModel(param.Parameterized):
         self._extra_excitation: dict = {}
         self._cancel: threading.Event | None = None
         self._mc_case_key = None
+        self._design_gap_cancel: threading.Event | None = None
+        self._design_gap_key = None
         self._load_preset()
 
     # --- inputs <-> case ---------------------------------------------------------
@@ -243,10 +253,10 @@ class PoundingModel(param.Parameterized):
             snapshot = compute_snapshot(case, seed=self.seed, monte_carlo=())
         except (CaseError, ConvergenceError, SimulationError) as error:
             with self._batch():
-                self._invalidate_monte_carlo(None)
+                self._invalidate_studies(None)
                 self.param.update(snapshot=None, error=_message(error))
             return
-        self._invalidate_monte_carlo(case)
+        self._invalidate_studies(case)
         # Show the derived storey data (stiffness for one storey, period for more).
         derived = {}
         for b, building in enumerate(case.buildings, start=1):
@@ -276,25 +286,69 @@ class PoundingModel(param.Parameterized):
 
     @staticmethod
     def _key(case):
-        """What a study depends on apart from the gap (its points share one plot)."""
+        """What a study depends on apart from the gap: its points share one plot,
+        and the design gap (free motion) holds at every gap. The unit system
+        the inputs are shown in is not part of it (the case is SI)."""
         if case is None:
             return None
         from dataclasses import replace
 
-        return replace(case, contact=replace(case.contact, gap=0.0))
+        return replace(case, contact=replace(case.contact, gap=0.0), units="SI")
 
-    def _invalidate_monte_carlo(self, case) -> None:
-        """A change of inputs: cancel a running study; drop points of another case."""
+    def _invalidate_studies(self, case) -> None:
+        """A change of inputs: cancel a running study and drop results of another case.
+
+        A study with contact runs at one gap: any change cancels it. The
+        design gap does not depend on the gap: a change of the gap alone
+        neither cancels nor drops it."""
         key = self._key(case)
+        # The status first: the study may end as soon as its event is set.
         if self._cancel is not None and not self._cancel.is_set():
-            self._cancel.set()
             self.mc_status = "Monte Carlo cancelled: the inputs changed while it ran."
+            self._cancel.set()
         if key != self._mc_case_key:
             self._mc_case_key = key
             if self.mc_points:
                 self.mc_points = []
                 if not self.mc_running:
                     self.mc_status = "Monte Carlo results cleared: the inputs changed."
+        if key != self._design_gap_key:
+            self._design_gap_key = key
+            if self._design_gap_cancel is not None and not self._design_gap_cancel.is_set():
+                self.design_gap_status = "Monte Carlo design gap cancelled: the inputs changed while it ran."
+                self._design_gap_cancel.set()
+            if self.design_gap_result is not None:
+                self.design_gap_result = None
+                if not self.design_gap_running:
+                    self.design_gap_status = "Monte Carlo design gap cleared: the inputs changed."
+
+    def _submit(self, study, cancel: threading.Event, progress, finished) -> None:
+        """Run ``study(progress=..., cancel=cancel)`` on the worker executor.
+
+        ``progress(cancel, done, total)`` and ``finished(cancel, result,
+        error)`` run on the session's event loop; ``result`` is None when the
+        study was cancelled or failed, ``error`` the failure's message. The
+        caller keeps ``cancel`` before this call: with an inline schedule the
+        study may finish before this returns.
+        """
+
+        def report(done: int, total: int) -> None:
+            if not cancel.is_set():
+                self._schedule(lambda: progress(cancel, done, total))
+
+        def work():
+            try:
+                result = study(progress=report, cancel=cancel)
+            except Cancelled:
+                self._schedule(lambda: finished(cancel, None, None))
+            except Exception as error:  # shown in the page, never a traceback
+                # The except clause unbinds `error` when it ends: take the message now.
+                message = _message(error)
+                self._schedule(lambda: finished(cancel, None, message))
+            else:
+                self._schedule(lambda: finished(cancel, result, None))
+
+        _EXECUTOR.submit(work)
 
     def monte_carlo_for_current_gap(self) -> MonteCarloPoint | None:
         """The latest study of exactly the current case, if any."""
@@ -311,32 +365,18 @@ class PoundingModel(param.Parameterized):
         case = self.snapshot.case
         key = self._key(case)
         records, seed = self.records, self.seed
-        cancel = threading.Event()
-        self._cancel = cancel
+        self._cancel = threading.Event()
         self.param.update(mc_running=True, mc_progress=0, mc_status=f"Monte Carlo: 0 of {records} records")
-
-        def progress(done: int, total: int) -> None:
-            if not cancel.is_set():
-                self._schedule(lambda: self._progress(cancel, done, total))
-
-        def work():
-            try:
-                result = simulate(case, records, seed, progress=progress, cancel=cancel)
-            except Cancelled:
-                self._schedule(lambda: self._finished(cancel, None, None, key))
-            except Exception as error:  # shown in the page, never a traceback
-                # The except clause unbinds `error` when it ends: take the message now.
-                message = _message(error)
-                self._schedule(lambda: self._finished(cancel, None, message, key))
-            else:
-                self._schedule(lambda: self._finished(cancel, result, None, key))
-
-        _EXECUTOR.submit(work)
+        self._submit(
+            partial(simulate, case, records, seed), self._cancel, self._progress,
+            lambda cancel, result, error: self._finished(cancel, result, error, key),
+        )
 
     def cancel_monte_carlo(self) -> None:
+        """Cancel the running study, if any (it stops after its current chunk of records)."""
         if self._cancel is not None and not self._cancel.is_set():
+            self.mc_status = "Monte Carlo: cancelling..."  # before the event: the study may end at once
             self._cancel.set()
-            self.mc_status = "Monte Carlo: cancelling..."
 
     def _progress(self, cancel, done, total):
         if cancel is self._cancel and not cancel.is_set():
@@ -356,6 +396,72 @@ class PoundingModel(param.Parameterized):
             self.param.update(mc_running=False, mc_status=f"Monte Carlo failed: {error}")
         else:
             self.param.update(mc_running=False, mc_progress=0, mc_status=self.mc_status if "changed" in self.mc_status else "Monte Carlo cancelled.")
+
+    # --- Monte Carlo design gap ----------------------------------------------------
+
+    def current_design_gap(self) -> DesignGap | None:
+        """The Monte Carlo design gap of the current case, for the closed form's
+        target probability, if one was run."""
+        result = self.design_gap_result
+        if self.snapshot is None or result is None or result.target_probability != self.snapshot.estimate.target_probability:
+            return None
+        return result
+
+    def run_design_gap(self) -> None:
+        """Start ``pounding.simulation.design_gap`` for the current case on a
+        worker thread: ``records`` records seeded ``seed``, for the target
+        probability of no pounding of the closed-form required gap.
+
+        Nothing runs if the result shown is already that one.
+        """
+        if self.design_gap_running or self.snapshot is None:
+            return
+        case = self.snapshot.case
+        target = self.snapshot.estimate.target_probability
+        records, seed = self.records, self.seed
+        shown = self.current_design_gap()
+        if shown is not None and (shown.n_records, shown.seed) == (records, seed):
+            self.design_gap_status = f"Monte Carlo design gap: already computed for these inputs ({records} records, seed {seed})."
+            return
+        key = self._key(case)
+        self._design_gap_cancel = threading.Event()
+        self.param.update(
+            design_gap_running=True, design_gap_progress=0, design_gap_status=f"Monte Carlo design gap: 0 of {records} records (free motion)"
+        )
+        self._submit(
+            partial(design_gap, case, target, records, seed), self._design_gap_cancel, self._design_gap_progress,
+            lambda cancel, result, error: self._design_gap_finished(cancel, result, error, key),
+        )
+
+    def cancel_design_gap(self) -> None:
+        """Cancel the running design gap, if any (it stops after its current chunk of records)."""
+        if self._design_gap_cancel is not None and not self._design_gap_cancel.is_set():
+            self.design_gap_status = "Monte Carlo design gap: cancelling..."  # before the event: the study may end at once
+            self._design_gap_cancel.set()
+
+    def _design_gap_progress(self, cancel, done, total):
+        if cancel is self._design_gap_cancel and not cancel.is_set():
+            self.param.update(
+                design_gap_progress=int(100 * done / total), design_gap_status=f"Monte Carlo design gap: {done} of {total} records (free motion)"
+            )
+
+    def _design_gap_finished(self, cancel, result, error, key):
+        if cancel is not self._design_gap_cancel:
+            return
+        self._design_gap_cancel = None
+        if result is not None and not cancel.is_set() and key == self._design_gap_key:
+            self.param.update(
+                design_gap_running=False, design_gap_progress=100, design_gap_result=result,
+                design_gap_status=f"Monte Carlo design gap done: {result.n_records} records.",
+            )
+        elif error is not None:
+            self.param.update(design_gap_running=False, design_gap_status=f"Monte Carlo design gap failed: {error}")
+        else:
+            status = self.design_gap_status
+            self.param.update(
+                design_gap_running=False, design_gap_progress=0,
+                design_gap_status=status if "changed" in status else "Monte Carlo design gap cancelled.",
+            )
 
 
 _LABELS = {

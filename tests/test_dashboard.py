@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import re
+import threading
 import time
 from dataclasses import replace
 from pathlib import Path
@@ -15,7 +16,7 @@ from pounding import load_case
 from pounding.case import DEFAULT_PRESET
 from pounding.estimator import estimate
 from pounding.report import Figures, compute_snapshot, display, result_html
-from pounding.simulation import DesignGap
+from pounding.simulation import Cancelled, DesignGap, design_gap
 from tests.browser import CANVAS_COUNT_JS, LOAD_TIMEOUT, UPDATE_TIMEOUT
 
 from dashboard.model import PoundingModel
@@ -125,6 +126,130 @@ def test_model_multistorey_preset_and_contact_level():
 
 
 # --- the Monte Carlo design gap, in process ---------------------------------------
+
+DESIGN_GAP_RECORDS = 20
+
+
+def _wait_until(done, timeout=60.0):
+    deadline = time.monotonic() + timeout
+    while not done() and time.monotonic() < deadline:
+        time.sleep(0.02)
+    assert done(), "timed out"
+
+
+def _counting_design_gap(monkeypatch, gate=None):
+    """Replace the model's ``design_gap`` by the library's, counting the calls and
+    recording how each ended; ``gate(cancel)`` runs first in the worker thread."""
+    import dashboard.model as module
+
+    calls = []
+
+    def counted(*args, **kwargs):
+        calls.append("started")
+        if gate is not None:
+            gate(kwargs["cancel"])
+        try:
+            result = design_gap(*args, **kwargs)
+        except Cancelled:
+            calls[-1] = "cancelled"
+            raise
+        calls[-1] = "done"
+        return result
+
+    monkeypatch.setattr(module, "design_gap", counted)
+    return calls
+
+
+def test_model_design_gap_is_the_library_one_and_holds_at_any_gap(monkeypatch):
+    calls = _counting_design_gap(monkeypatch)
+    model = PoundingModel(records=DESIGN_GAP_RECORDS, seed=3)
+    model.run_design_gap()
+    _wait_until(lambda: not model.design_gap_running)
+    result = model.current_design_gap()
+    case = model.snapshot.case
+    expected = design_gap(case, model.snapshot.estimate.target_probability, DESIGN_GAP_RECORDS, 3)
+    assert result is model.design_gap_result and result.target_probability == 0.95
+    assert (result.gap, result.upper_bound, result.seed) == (expected.gap, expected.upper_bound, 3)
+    np.testing.assert_array_equal(result.peaks, expected.peaks)
+    assert model.design_gap_progress == 100 and model.design_gap_status == f"Monte Carlo design gap done: {DESIGN_GAP_RECORDS} records."
+    # The gap, and the unit system it is shown in, leave the free motion as it is: kept, and not run again.
+    model.gap = 2 * model.gap
+    model.units = "kgf-cm-s"
+    assert model.snapshot.case.contact.gap == pytest.approx(2 * case.contact.gap)
+    assert model.current_design_gap() is result
+    model.run_design_gap()
+    assert calls == ["done"] and not model.design_gap_running and model.current_design_gap() is result
+    # Another record count is another study.
+    model.records = DESIGN_GAP_RECORDS - 10
+    model.run_design_gap()
+    _wait_until(lambda: not model.design_gap_running)
+    assert calls == ["done", "done"] and model.current_design_gap().n_records == DESIGN_GAP_RECORDS - 10
+    # Any other input changes the free motion: the result goes.
+    model.restitution = 0.6
+    assert model.design_gap_result is None and model.current_design_gap() is None
+    assert model.design_gap_status == "Monte Carlo design gap cleared: the inputs changed."
+
+
+def test_model_design_gap_running_survives_a_change_of_gap_but_not_of_the_case(monkeypatch):
+    release = threading.Event()
+    calls = _counting_design_gap(monkeypatch, gate=lambda _cancel: release.wait(30))
+    model = PoundingModel(records=DESIGN_GAP_RECORDS)
+    model.run_design_gap()
+    model.gap = 0.02  # while it runs
+    assert model.design_gap_running and calls in ([], ["started"])
+    release.set()
+    _wait_until(lambda: not model.design_gap_running)
+    assert calls == ["done"]
+    expected = design_gap(model.snapshot.case, 0.95, DESIGN_GAP_RECORDS, model.seed)
+    assert model.current_design_gap().gap == expected.gap
+    # A change of the case while it runs cancels it, and nothing of it is shown.
+    release.clear()
+    model.records = DESIGN_GAP_RECORDS + 10
+    model.run_design_gap()
+    model.period_2 = 0.45
+    release.set()
+    _wait_until(lambda: not model.design_gap_running)
+    assert calls == ["done", "cancelled"]
+    assert model.design_gap_result is None
+    assert model.design_gap_status == "Monte Carlo design gap cancelled: the inputs changed while it ran."
+
+
+def test_model_design_gap_cancel_stops_it(monkeypatch):
+    # The first study waits for the cancel, so that it is cancelled whatever the threads' timing.
+    calls = _counting_design_gap(monkeypatch, gate=lambda cancel: len(calls) > 1 or cancel.wait(30))
+    model = PoundingModel(records=DESIGN_GAP_RECORDS)
+    model.run_design_gap()
+    assert model.design_gap_running
+    model.cancel_design_gap()
+    _wait_until(lambda: not model.design_gap_running)
+    assert calls == ["cancelled"]
+    assert model.design_gap_result is None and model.design_gap_progress == 0
+    assert model.design_gap_status == "Monte Carlo design gap cancelled."
+    model.run_design_gap()  # and it can run again
+    _wait_until(lambda: not model.design_gap_running)
+    assert calls == ["cancelled", "done"] and model.current_design_gap() is not None
+
+
+def test_model_reports_a_failed_design_gap(monkeypatch):
+    import dashboard.model as module
+    from pounding import SimulationError
+
+    def failing(*_args, **_kwargs):
+        raise SimulationError("record 7 (seed 1) failed at t = 3.0000 s: the response became NaN or infinite")
+
+    monkeypatch.setattr(module, "design_gap", failing)
+    pending = []  # deferred, as a served session's event loop runs them
+    model = PoundingModel(schedule=pending.append)
+    model.run_design_gap()
+    deadline = time.monotonic() + 30
+    while model.design_gap_running and time.monotonic() < deadline:
+        while pending:
+            pending.pop(0)()
+        time.sleep(0.02)
+    assert not model.design_gap_running and model.current_design_gap() is None
+    assert model.design_gap_status == (
+        "Monte Carlo design gap failed: SimulationError: record 7 (seed 1) failed at t = 3.0000 s: the response became NaN or infinite"
+    )
 
 
 def _text(html: str) -> str:
