@@ -3,8 +3,8 @@
 Serve with ``pounding dashboard`` or ``panel serve dashboard/app.py``. It opens
 on the paper's Section 5 case (T1 = 1.2 s, T2 = 0.4 s); every change of an
 input recomputes the estimates, F_e against the gap, and the spectra,
-hysteresis loops and pounding force history shown in tabs (no button). The reduced-sample Monte Carlo runs on request off the event
-loop; *Export report* downloads the static HTML report of the current state.
+hysteresis loops and pounding force history shown in tabs (no button). The reduced-sample Monte Carlo and the
+Monte Carlo design gap run on request off the event loop; *Export report* downloads the static HTML report of the current state.
 """
 
 from __future__ import annotations
@@ -161,7 +161,11 @@ class Dashboard:
             visible=pn.bind(bool, m.param.error), sizing_mode="stretch_width", css_classes=["input-error"],
         )
         self.result = pn.pane.HTML(
-            pn.bind(self._card, m.param.snapshot, m.param.units, m.param.mc_points, m.param.mc_status), sizing_mode="stretch_width",
+            pn.bind(
+                self._card, m.param.snapshot, m.param.units, m.param.mc_points, m.param.mc_status,
+                m.param.design_gap_result, m.param.design_gap_status,
+            ),
+            sizing_mode="stretch_width",
             stylesheets=[RESULT_CSS],
         )
         # Monte Carlo
@@ -170,6 +174,19 @@ class Dashboard:
         self.run.on_click(lambda _event: m.run_monte_carlo())
         self.cancel.on_click(lambda _event: m.cancel_monte_carlo())
         self.progress = pn.indicators.Progress(value=m.param.mc_progress, max=100, width=260, css_classes=["mc-progress"])
+        # The design gap: the same records' free motion (no contact), so the case's gap does not enter.
+        self.run_design_gap = pn.widgets.Button(
+            name="Monte Carlo design gap", button_type="primary",
+            disabled=pn.bind(lambda r, s: r or s is None, m.param.design_gap_running, m.param.snapshot),
+        )
+        self.cancel_design_gap = pn.widgets.Button(
+            name="Cancel design gap", button_type="warning", disabled=pn.bind(lambda r: not r, m.param.design_gap_running)
+        )
+        self.run_design_gap.on_click(lambda _event: m.run_design_gap())
+        self.cancel_design_gap.on_click(lambda _event: m.cancel_design_gap())
+        self.design_gap_progress = pn.indicators.Progress(
+            value=m.param.design_gap_progress, max=100, width=260, css_classes=["design-gap-progress"]
+        )
         self.export = pn.widgets.FileDownload(
             callback=self._export, filename="pounding-report.html", label="Export report (HTML)", button_type="success",
             disabled=pn.bind(lambda s: s is None, m.param.snapshot), auto=True, embed=False,
@@ -178,6 +195,8 @@ class Dashboard:
             pn.Row(pn.widgets.IntSlider.from_param(m.param.records, width=220), pn.widgets.IntInput.from_param(m.param.seed, width=90)),
             pn.Row(self.run, self.cancel, self.progress),
             pn.pane.Markdown(m.param.mc_status, css_classes=["mc-status"]),
+            pn.Row(self.run_design_gap, self.cancel_design_gap, self.design_gap_progress),
+            pn.pane.Markdown(m.param.design_gap_status, css_classes=["design-gap-status"]),
             title="Reduced-sample Monte Carlo (the 'exact' method)", sizing_mode="stretch_width",
         )
 
@@ -185,11 +204,11 @@ class Dashboard:
         # redrawn on the next tick, after the result card has gone out, and
         # several quick changes give one redraw.
         self.figures = Figures()
-        self.figures.fill(m.snapshot, m.units, tuple(m.mc_points))
+        self.figures.fill(m.snapshot, m.units, tuple(m.mc_points), m.current_design_gap())
         self._schedule = delay or schedule or (lambda fn: fn())
         self._batch = batch or contextlib.nullcontext
         self._redraw_pending = False
-        m.param.watch(self._request_redraw, ["snapshot", "units", "mc_points"])
+        m.param.watch(self._request_redraw, ["snapshot", "units", "mc_points", "design_gap_result"])
         bokeh = lambda fig: pn.pane.Bokeh(fig, sizing_mode="stretch_width")  # noqa: E731
 
         self.main = [
@@ -216,7 +235,7 @@ class Dashboard:
         self._redraw_pending = False
         m = self.model
         with self._batch():
-            self.figures.fill(m.snapshot, m.units, tuple(m.mc_points))
+            self.figures.fill(m.snapshot, m.units, tuple(m.mc_points), m.current_design_gap())
 
     def _relabel(self, *_events):
         m = self.model
@@ -227,19 +246,24 @@ class Dashboard:
             self._inputs[f"period_{b}"].disabled = not single
             self._inputs[f"stiffness_{b}"].disabled = single
 
-    def _card(self, snapshot, units, points, status):
+    def _card(self, snapshot, units, points, status, design_gap, design_gap_status):
         if snapshot is None:
             return '<div class="pounding-result stale"><p>No result: the inputs are invalid (see the message above).</p></div>'
         m = self.model
         current = m.monte_carlo_for_current_gap()
         note = "running..." if m.mc_running else ("not run for these inputs" if not status or "done" in status else status)
-        return result_html(snapshot, units, current, note)
+        design_gap_note = (
+            "running..." if m.design_gap_running
+            else "not run for these inputs (button Monte Carlo design gap)" if not design_gap_status or "done" in design_gap_status
+            else design_gap_status
+        )
+        return result_html(snapshot, units, current, note, m.current_design_gap(), design_gap_note)
 
     def _export(self):
         m = self.model
         if m.snapshot is None:
             return None
-        snapshot = replace(m.snapshot, monte_carlo=tuple(m.mc_points))
+        snapshot = replace(m.snapshot, monte_carlo=tuple(m.mc_points), design_gap=m.current_design_gap())
         folder = Path(tempfile.mkdtemp(prefix="pounding-report-"))
         name = f"pounding-report-{snapshot.case.name}.html"
         self.export.filename = name

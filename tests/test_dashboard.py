@@ -15,7 +15,7 @@ import pytest
 from pounding import load_case
 from pounding.case import DEFAULT_PRESET
 from pounding.estimator import estimate
-from pounding.report import Figures, compute_snapshot, display, result_html
+from pounding.report import DEFAULT_SEED, Figures, compute_snapshot, display, result_html
 from pounding.simulation import Cancelled, DesignGap, design_gap
 from tests.browser import CANVAS_COUNT_JS, LOAD_TIMEOUT, UPDATE_TIMEOUT
 
@@ -357,6 +357,22 @@ def test_short_simulation_runs_to_completion_with_progress(dashboard):
     assert progress.get_attribute("value") == "100"
     mean = dashboard.locator(".mc-mean").inner_text()
     assert mean.endswith("kN")
+    assert dashboard.errors == []
+
+
+@pytest.mark.browser
+def test_design_gap_button_shows_the_library_gap(dashboard):
+    records = _handle(dashboard, "records")
+    records.focus()
+    dashboard.keyboard.press("ArrowLeft")
+    dashboard.keyboard.press("ArrowLeft")  # 40 -> 20 records
+    dashboard.get_by_role("button", name="Monte Carlo design gap").click()
+    _wait_text(dashboard, ".design-gap-status", f"Monte Carlo design gap done: {DESIGN_GAP_RECORDS} records.", timeout=60_000)
+    case = load_case(DEFAULT_PRESET)
+    expected = design_gap(case, 0.95, DESIGN_GAP_RECORDS, DEFAULT_SEED)
+    _wait_text(dashboard, ".mc-design-gap", display("SI").length(expected.gap))
+    _wait_text(dashboard, ".mc-design-gap-bound", "too few records for a 90 % upper confidence bound")
+    _wait_text(dashboard, ".design-gap-ratio", f"{estimate(case).required_gap / expected.gap:.3g}")
     assert dashboard.errors == []
 
 
