@@ -260,7 +260,7 @@ def _print_design_gap(case, result, closed_form, failure, args) -> int:
         return 0
     print(f"case            {case.name}")
     print(f"records         {result.n_records} x {case.excitation.duration:g} s, seed {args.seed} (free motion: the case's gap is not used)")
-    bound = f"{100 * result.upper_bound:.2f} cm" if math.isfinite(result.upper_bound) else "n/a: too few records"
+    bound = f"{100 * result.upper_bound:.2f} cm" if math.isfinite(result.upper_bound) else f"n/a: it needs {result.records_for_bound} records"
     print(f"gap for {100 * result.target_probability:g} % no pounding   {100 * result.gap:.2f} cm   (90 % confidence bound {bound})")
     if closed_form is None:
         print(f"closed form     n/a: {failure}")

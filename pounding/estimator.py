@@ -573,7 +573,7 @@ TAIL_WARNING = (
 REQUIRED_GAP_WARNING = (
     "the gap for the target probability lies where pounding is rare (beyond sigma_X); simulated at the gap "
     "given for 95 %, the fraction of records that pounded was {range} (docs/estimator.md); size the gap by "
-    "Monte Carlo with `pounding simulate --design-gap`"
+    "Monte Carlo: `pounding simulate --design-gap`, or the dashboard's Monte Carlo design gap"
 )
 NARROW_BAND_WARNING = (
     "the relative displacement is narrow-band (bandwidth q = {bandwidth:.2f} < {limit}): near the mean position the "

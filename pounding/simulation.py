@@ -360,6 +360,12 @@ class DesignGap:
     def n_records(self) -> int:
         return self.peaks.size
 
+    @property
+    def records_for_bound(self) -> int:
+        """The fewest records that give the 90 % bound: the largest of N peaks
+        bounds the gap for probability p with confidence 1 - p^N."""
+        return math.ceil(math.log(0.1) / math.log(self.target_probability) - 1e-9)
+
     def pounding_fraction(self, gap: float) -> float:
         """Fraction of the records that pound at ``gap`` [m]."""
         return float(np.mean(self.peaks > gap))

@@ -268,7 +268,7 @@ def test_card_and_plot_show_the_design_gap_beside_the_closed_form():
         f"closed form / Monte Carlo = {required / 0.2:.3g} [-]." in card
     )
     too_few = DesignGap(gap=0.2, upper_bound=math.inf, target_probability=0.95, peaks=peaks[:20], seed=4)
-    assert "200 mm (too few records for a 90 % upper confidence bound; free motion of 20 records" in _text(result_html(snapshot, "SI", design_gap=too_few))
+    assert "200 mm (too few records for a 90 % upper confidence bound (it needs 45); free motion of 20 records" in _text(result_html(snapshot, "SI", design_gap=too_few))
     assert "Monte Carlo gap" not in _text(result_html(snapshot, "SI"))  # the static report without one: no line
     figures = Figures()
     figures.fill(snapshot, "kgf-cm-s", design_gap=bounded)

@@ -76,3 +76,13 @@ def test_command_line_gives_both_gaps_in_json():
     assert data["design_gap"] == pytest.approx(expected.gap, rel=1e-12)
     assert data["design_gap_upper_bound_90"] is None  # too few records: no bound, not an infinity JSON cannot hold
     assert data["closed_form_required_gap"] > 0
+
+
+@pytest.mark.parametrize("target", [0.8, 0.95])
+def test_records_for_bound_is_where_the_bound_starts(target):
+    """One record fewer than ``records_for_bound`` gives no 90 % bound; that many give one."""
+    fewest = design_gap(CASE, target_probability=target, records=2, seed=6).records_for_bound
+    short = design_gap(CASE, target_probability=target, records=fewest - 1, seed=6)
+    enough = design_gap(CASE, target_probability=target, records=fewest, seed=6)
+    assert np.isinf(short.upper_bound) and np.isfinite(enough.upper_bound)
+    assert enough.upper_bound == enough.peaks.max()  # with the fewest records, only the largest peak bounds it
