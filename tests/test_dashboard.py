@@ -371,7 +371,7 @@ def test_design_gap_button_shows_the_library_gap(dashboard):
     case = load_case(DEFAULT_PRESET)
     expected = design_gap(case, 0.95, DESIGN_GAP_RECORDS, DEFAULT_SEED)
     _wait_text(dashboard, ".mc-design-gap", display("SI").length(expected.gap))
-    _wait_text(dashboard, ".mc-design-gap-bound", "too few records for a 90 % upper confidence bound")
+    _wait_text(dashboard, ".mc-design-gap-bound", f"too few records for a 90 % upper confidence bound (it needs {expected.records_for_bound})")
     _wait_text(dashboard, ".design-gap-ratio", f"{estimate(case).required_gap / expected.gap:.3g}")
     assert dashboard.errors == []
 

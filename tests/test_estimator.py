@@ -117,3 +117,26 @@ def test_bad_target_probability_is_named(value):
 def test_bad_gaps_are_named():
     with pytest.raises(CaseError, match="gaps"):
         force_versus_gap(load_case("section5-T2-0.4"), [0.01, -0.01])
+
+
+def test_every_number_is_finite_and_in_range_across_the_claimed_ranges():
+    """100 cases drawn from the ranges the estimator claims (every kind of pair,
+    stationary and modulated), each also at gap 0 and 50 cm and at restitution
+    0.05 and 0.99: no NaN or infinity, probabilities in [0, 1], forces >= 0, a
+    positive gap for the target, and force and probability never rising with the gap."""
+    from pounding.validation import random_cases
+
+    for case in random_cases(1):
+        result = estimate(case)
+        numbers = [v for v in result.to_dict().values() if isinstance(v, float)]
+        numbers += [v for v in result.to_dict()["paper"].values() if isinstance(v, float)]
+        assert all(math.isfinite(v) for v in numbers), case.name
+        assert 0.0 <= result.pounding_probability <= 1.0 and result.force_expected >= 0.0 and result.required_gap > 0.0, case.name
+        curve = result.gap_curve(np.linspace(0.0, 3.0 * result.required_gap, 30))
+        assert np.all(np.diff(curve.force_expected) <= 1e-9 * curve.force_expected[0]), case.name
+        assert np.all(np.diff(curve.pounding_probability) <= 1e-12), case.name
+        for gap in (0.0, 0.5):
+            for restitution in (0.05, 0.99):
+                extreme = estimate(_with(case, gap=gap, restitution=restitution))
+                assert all(math.isfinite(v) for v in (extreme.force_expected, extreme.pounding_probability, extreme.required_gap))
+                assert extreme.force_expected >= 0.0, (case.name, gap, restitution)
