@@ -129,7 +129,8 @@ def _parser() -> argparse.ArgumentParser:
         "both estimators with their chain of equations, the gap-aware results, spectra, hysteresis loops, "
         "force against gap and, with --records, the Monte Carlo comparison. Written atomically.",
         epilog="examples:\n  pounding report section5-T2-0.4 -o report.html\n"
-        "  pounding report case.toml -o case.html --records 300 --units kgf-cm-s",
+        "  pounding report case.toml -o case.html --records 300 --units kgf-cm-s\n"
+        "  pounding report section5-T2-0.4 -o report.html --records 300 --design-gap 0.95",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     report.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
@@ -137,6 +138,9 @@ def _parser() -> argparse.ArgumentParser:
     report.add_argument("--records", type=_non_negative_int, default=0,
                         help="Monte Carlo records to compare with (default 0: none)")
     report.add_argument("--seed", type=_non_negative_int, default=1, help="seed of the Monte Carlo study (default 1)")
+    report.add_argument("--design-gap", type=float, metavar="P", default=None,
+                        help="also the Monte Carlo gap for probability P of no pounding, from the same --records' free motion, "
+                        "beside the closed form's for P")
     report.add_argument("--units", choices=("SI", "kgf-cm-s"), default="SI", help="units shown in the report (default SI)")
     report.add_argument("--json", action="store_true", help="print one JSON object: the file written and the figures in it (SI)")
 
@@ -390,36 +394,47 @@ def _dashboard(args) -> int:
 
 
 def _report(args) -> int:
+    from dataclasses import replace
     from pathlib import Path
 
     from .case import load_case
-    from .errors import CaseError
+    from .errors import CaseError, check_probability
+    from .estimator import DEFAULT_TARGET_PROBABILITY
+    from .simulation import design_gap, simulate
 
+    if args.design_gap is not None:
+        check_probability(args.design_gap, "--design-gap")
+        if not args.records:
+            raise CaseError("--design-gap", "needs records: give --records N (N >= 1)")
     case = load_case(args.case)
     path = Path(args.output)
     if not path.parent.is_dir():
         raise CaseError("--output", f"the folder {str(path.parent)!r} does not exist")
-    monte_carlo = ()
-    if args.records:
-        from .simulation import simulate
-
+    studies = [simulate] if args.records else []
+    if args.design_gap is not None:
+        studies.append(partial(design_gap, target_probability=args.design_gap))
+    results = []
+    for study in studies:
         bar = _progress_bar(args.records, sys.stderr.isatty())
         try:
-            result = simulate(case, records=args.records, seed=args.seed, progress=(lambda done, total: bar.update(done - bar.n)) if bar else None)
+            results.append(study(case, records=args.records, seed=args.seed, progress=(lambda done, total: bar.update(done - bar.n)) if bar else None))
         finally:
             if bar is not None:
                 bar.close()
     # The plotting libraries load here only: every other command stays fast.
     from .report import MonteCarloPoint, compute_snapshot, write_report
 
-    if args.records:
-        monte_carlo = (MonteCarloPoint.from_result(result),)
-    snapshot = compute_snapshot(case, monte_carlo=monte_carlo)
+    monte_carlo = (MonteCarloPoint.from_result(results[0]),) if results else ()
+    free = results[1] if len(results) > 1 else None
+    snapshot = compute_snapshot(case, target_probability=args.design_gap or DEFAULT_TARGET_PROBABILITY, monte_carlo=monte_carlo)
+    snapshot = replace(snapshot, design_gap=free)
     write_report(path, snapshot, units=args.units)
     if args.json:
         figures = snapshot.estimate.to_dict()
         if monte_carlo:
             figures["monte_carlo"] = dict(monte_carlo[0].__dict__)
+        if free is not None:
+            figures["monte_carlo_design_gap"] = free.to_dict()
         print(json.dumps({"report": str(path), **figures}))
     else:
         print(f"wrote {path} ({path.stat().st_size / 1e6:.1f} MB)")

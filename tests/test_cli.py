@@ -9,6 +9,7 @@ import pytest
 
 from pounding import load_case, preset_names, simulate
 from pounding.estimator import estimate
+from pounding.simulation import design_gap
 
 
 def run(*args, **kwargs):
@@ -68,6 +69,8 @@ def test_simulate_table_has_units():
         (("estimate", "nowhere.toml"), "neither a TOML file nor a preset"),
         (("report", "section5-T2-0.4", "-o", "/no/such/folder/report.html"), "--output"),
         (("report", "section5-T2-0.4"), "--output"),
+        (("report", "section5-T2-0.4", "-o", "/tmp/unused-report.html", "--design-gap", "0.95"), "--design-gap"),
+        (("report", "section5-T2-0.4", "-o", "/tmp/unused-report.html", "--records", "4", "--design-gap", "1.5"), "--design-gap"),
         (("sweep", "section5-T2-0.4", "--vary", "contact.gap=1:0", "-o", "/tmp/unused-sweep"), "contact.gap"),
         (("validate", "--records", "0"), "--records"),
     ],
@@ -117,6 +120,19 @@ def test_report_is_written_and_described(tmp_path):
     text = path.read_text()
     assert "<html" in text.lower() and "section5-T2-0.8" in text
     assert not list(tmp_path.glob(".*.tmp"))
+
+
+def test_report_carries_the_monte_carlo_design_gap_beside_the_closed_form(tmp_path):
+    path = tmp_path / "report.html"
+    out = run("report", "section5-T2-0.8", "-o", str(path), "--records", "12", "--seed", "3", "--design-gap", "0.9", "--json")
+    assert out.returncode == 0, out.stderr
+    data = json.loads(out.stdout)
+    expected = design_gap(load_case("section5-T2-0.8"), target_probability=0.9, records=12, seed=3)
+    assert data["monte_carlo_design_gap"]["design_gap"] == pytest.approx(expected.gap, rel=1e-12)
+    assert data["target_probability"] == 0.9  # the closed form's gap is for the same probability
+    assert data["monte_carlo"]["records"] == 12
+    text = path.read_text()
+    assert "Monte Carlo gap for 90 % no pounding" in text and "it needs 22" in text  # 0.9^22 < 0.1 < 0.9^21
 
 
 def test_killed_report_leaves_no_file(tmp_path):
