@@ -30,10 +30,14 @@ at r^2 = a_d^2 + a_v^2. A negative excess (a lighter tail) is left Gaussian.
     python3 docs/non_gaussian.py --whole    # the one-pass model's whole kurtosis, sampled, 4 cases, about 15 s
     python3 docs/non_gaussian.py --impacts  # both counts with the time cut and with the linearized
                                             # pair's instantaneous impacts, stationary grid, about 10 min
+    python3 docs/non_gaussian.py --design-gap 2026   # the gap for 95 % of the one-storey pairs of a random
+                                            # draw whose closed-form gap is unsafe, with the Hermite
+                                            # count, first-order and simulated kurtosis, about 3 min
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import sys
 from pathlib import Path
@@ -60,7 +64,8 @@ from pounding.excitation import ground_accelerations  # noqa: E402
 from pounding.linearization import linearize_pair  # noqa: E402
 from pounding.linearization.residual import _storeys, residual_response, sampled_residual_paths  # noqa: E402
 from pounding.estimator import estimate  # noqa: E402
-from pounding.validation import accuracy_cases  # noqa: E402
+from pounding.simulation import design_gap  # noqa: E402
+from pounding.validation import RANDOM_FAMILIES, accuracy_cases, random_cases  # noqa: E402
 
 RECORDS, IMPACT_RECORDS, SEED = 300, 200, 11
 SETTLED = 5.0  # [s] the build-up from rest left out of the simulated kurtosis
@@ -136,6 +141,74 @@ def expected_power(result, power: float, h_x: float = 0.0, h_v: float = 0.0, tim
         below = ndtr(a_d) if time_cut else 1.0
         expected += weight * sigma_v / sigma_x * level * faster / below * vanmarcke_clumps(np.hypot(a_d, a_v), clumping)
     return float(np.trapezoid(-np.expm1(-expected), speeds**power))
+
+
+def hermite_required_gap(result, h_x: float, h_v: float) -> float:
+    """The estimator's design rule (every approach counted, time cut, no clumps: Lambda(0; d) = -ln p)
+    with the Hermite count in place of the Gaussian one; h = 0 gives ``result.required_gap``."""
+    crossings = result.crossings
+    kappa_x, kappa_v = 1.0 / math.sqrt(1.0 + 6.0 * h_x * h_x), 1.0 / math.sqrt(1.0 + 6.0 * h_v * h_v)
+    faster = kappa_v * _phi(0.0) * (1.0 - h_v)  # E[V; V > 0] / sigma_V
+
+    def approaches(gap):
+        total = 0.0
+        for sigma_x, sigma_v, weight in zip(crossings.sigma_x, crossings.sigma_v, crossings.weights):
+            a_d = float(gaussian_level(gap / sigma_x, h_x))
+            level = _phi(a_d) / (kappa_x * (1.0 + 3.0 * h_x * (a_d * a_d - 1.0)))
+            total += weight * sigma_v / sigma_x * level * faster / ndtr(a_d)
+        return total
+
+    return brentq(lambda gap: approaches(gap) + math.log(result.target_probability), 0.0, 10.0 * crossings.sigma_x.max())
+
+
+def simulated_excess_kurtosis(case, records: int = 240) -> np.ndarray:
+    """Excess kurtosis of X and V of the free motion, each sample over the ensemble's RMS at its time (so a
+    modulated record's envelope does not count), where that RMS exceeds half its largest value and after
+    the first SETTLED seconds."""
+    from pounding.simulation import integrate
+
+    free = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=10.0))
+    step = case.excitation.time_step
+    level_1, level_2 = case.contact.levels
+    paths = []
+    for record in ground_accelerations(case.excitation, SEED, np.arange(records)):
+        history = integrate(free, record, step)
+        time = np.arange(record.size) * step
+        velocity = history.velocity[:, history.floor(1, level_1)] - history.velocity[:, history.floor(2, level_2)]
+        paths.append([np.interp(time, history.time, history.penetration + 10.0), np.interp(time, history.time, velocity)])
+    paths = np.array(paths)  # (records, 2, time)
+    rms = np.sqrt(np.mean(paths**2, axis=0))
+    excess = []
+    for output in range(2):
+        keep = (rms[output] > 0.5 * rms[output].max()) & (np.arange(rms.shape[1]) * step >= SETTLED)
+        standard = paths[:, output, keep] / rms[output, keep]
+        excess.append(float(np.mean(standard**4) - 3.0))
+    return np.array(excess)
+
+
+def design_gap_table(seed: int, records: int = 400, limit: float = 0.072) -> None:
+    """The one-storey pairs of ``random_cases(seed)`` whose closed-form gap for 95 % lets more than ``limit``
+    of ``records`` free records (seed 9) reach it, with the Hermite design rule under the first-order and
+    the simulated kurtosis: the fraction of the records that reach each gap."""
+    print("| case | excess kurtosis of X: first order / simulated | of V: first order / simulated | Monte Carlo gap (cm) "
+          "| Gaussian: gap, fraction | Hermite, first order | Hermite, simulated kurtosis |")
+    print("|---|---|---|---|---|---|---|")
+    families = [family for family, count in RANDOM_FAMILIES for _ in range(count)]
+    for case, family in zip(random_cases(seed), families):
+        if family not in ("SDOF", "SDOF modulated"):
+            continue
+        result = estimate(case, target_probability=0.95)
+        free = design_gap(case, 0.95, records=records, seed=9)
+        if free.pounding_fraction(result.required_gap) <= limit:
+            continue
+        assert abs(hermite_required_gap(result, 0.0, 0.0) / result.required_gap - 1.0) < 1e-4  # the estimator's rule (its bisection tolerance)
+        first, simulated = excess_kurtosis(case), simulated_excess_kurtosis(case)
+        cells = []
+        for excess in (np.zeros(2), first, simulated):
+            gap = hermite_required_gap(result, *(hermite_coefficient(e) for e in excess))
+            cells.append(f"{100 * gap:.2f}, {free.pounding_fraction(gap):.3f}")
+        print(f"| {case.name.strip()} | {first[0]:+.2f} / {simulated[0]:+.2f} | {first[1]:+.2f} / {simulated[1]:+.2f} "
+              f"| {100 * free.gap:.2f} | " + " | ".join(cells) + " |", flush=True)
 
 
 def _kurtosis(samples) -> float:
@@ -255,7 +328,9 @@ def _summary(errors: np.ndarray, labels, what: str) -> None:
 
 
 if __name__ == "__main__":
-    if "--impacts" in sys.argv[1:]:
+    if "--design-gap" in sys.argv[1:]:
+        design_gap_table(int(sys.argv[sys.argv.index("--design-gap") + 1]))
+    elif "--impacts" in sys.argv[1:]:
         impacts_table()
     elif "--whole" in sys.argv[1:]:
         whole_kurtosis_table()
