@@ -60,10 +60,14 @@ from error_decomposition import (  # noqa: E402
 )
 
 from pounding import load_case  # noqa: E402
+from pounding.estimator import estimate  # noqa: E402
 from pounding.excitation import ground_accelerations  # noqa: E402
 from pounding.linearization import linearize_pair  # noqa: E402
-from pounding.linearization.residual import _storeys, residual_response, sampled_residual_paths  # noqa: E402
-from pounding.estimator import estimate  # noqa: E402
+from pounding.linearization.residual import (  # noqa: E402
+    _storeys,
+    residual_response,
+    sampled_residual_paths,
+)
 from pounding.simulation import design_gap  # noqa: E402
 from pounding.validation import RANDOM_FAMILIES, accuracy_cases, random_cases  # noqa: E402
 
