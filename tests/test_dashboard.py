@@ -268,7 +268,7 @@ def test_card_and_plot_show_the_design_gap_beside_the_closed_form():
         f"closed form / Monte Carlo = {required / 0.2:.3g} [-]." in card
     )
     too_few = DesignGap(gap=0.2, upper_bound=math.inf, target_probability=0.95, peaks=peaks[:20], seed=4)
-    assert "200 mm (too few records for a 90 % upper confidence bound (it needs 45); free motion of 20 records" in _text(result_html(snapshot, "SI", design_gap=too_few))
+    assert "200 mm (too few records for a 90 % upper confidence bound: it needs 45; free motion of 20 records" in _text(result_html(snapshot, "SI", design_gap=too_few))
     assert "Monte Carlo gap" not in _text(result_html(snapshot, "SI"))  # the static report without one: no line
     figures = Figures()
     figures.fill(snapshot, "kgf-cm-s", design_gap=bounded)
@@ -371,7 +371,7 @@ def test_design_gap_button_shows_the_library_gap(dashboard):
     case = load_case(DEFAULT_PRESET)
     expected = design_gap(case, 0.95, DESIGN_GAP_RECORDS, DEFAULT_SEED)
     _wait_text(dashboard, ".mc-design-gap", display("SI").length(expected.gap))
-    _wait_text(dashboard, ".mc-design-gap-bound", f"too few records for a 90 % upper confidence bound (it needs {expected.records_for_bound})")
+    _wait_text(dashboard, ".mc-design-gap-bound", f"too few records for a 90 % upper confidence bound: it needs {expected.records_for_bound}")
     _wait_text(dashboard, ".design-gap-ratio", f"{estimate(case).required_gap / expected.gap:.3g}")
     assert dashboard.errors == []
 

@@ -105,7 +105,7 @@ def _design_gap_html(snapshot: Snapshot, d: Display, result: DesignGap | None, n
     bound = (
         f'90 % upper confidence bound <span class="mc-design-gap-bound">{d.length(result.upper_bound)}</span>'
         if math.isfinite(result.upper_bound)
-        else f'<span class="mc-design-gap-bound">too few records for a 90 % upper confidence bound (it needs {result.records_for_bound})</span>'
+        else f'<span class="mc-design-gap-bound">too few records for a 90 % upper confidence bound: it needs {result.records_for_bound}</span>'
     )
     # Below 1 the closed form is the narrower gap: more records would pound at it than the target allows.
     ratio = f"{e.required_gap / result.gap:.3g}" if result.gap > 0 else "n/a"
