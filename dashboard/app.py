@@ -162,8 +162,8 @@ class Dashboard:
         )
         self.result = pn.pane.HTML(
             pn.bind(
-                self._card, m.param.snapshot, m.param.units, m.param.mc_points, m.param.mc_status,
-                m.param.design_gap_result, m.param.design_gap_status,
+                self._card, m.param.snapshot, m.param.units, m.param.mc_points, m.param.mc_status, m.param.mc_running,
+                m.param.design_gap_result, m.param.design_gap_status, m.param.design_gap_running,
             ),
             sizing_mode="stretch_width",
             stylesheets=[RESULT_CSS],
@@ -246,14 +246,16 @@ class Dashboard:
             self._inputs[f"period_{b}"].disabled = not single
             self._inputs[f"stiffness_{b}"].disabled = single
 
-    def _card(self, snapshot, units, points, status, design_gap, design_gap_status):
+    def _card(self, snapshot, units, _points, status, running, _design_gap, design_gap_status, design_gap_running):
+        # Bound to every parameter the card shows (a study's end may leave its status unchanged); the
+        # studies matching the current case come from the model.
         if snapshot is None:
             return '<div class="pounding-result stale"><p>No result: the inputs are invalid (see the message above).</p></div>'
         m = self.model
         current = m.monte_carlo_for_current_gap()
-        note = "running..." if m.mc_running else ("not run for these inputs" if not status or "done" in status else status)
+        note = "running..." if running else ("not run for these inputs" if not status or "done" in status else status)
         design_gap_note = (
-            "running..." if m.design_gap_running
+            "running..." if design_gap_running
             else "not run for these inputs (button Monte Carlo design gap)" if not design_gap_status or "done" in design_gap_status
             else design_gap_status
         )

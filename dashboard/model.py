@@ -16,11 +16,14 @@ No Panel here: the view (``app.py``) builds widgets from these parameters.
 from __future__ import annotations
 
 import contextlib
+import dataclasses
+import math
 import threading
 from concurrent.futures import ThreadPoolExecutor
 from functools import partial
 from typing import Callable
 
+import numpy as np
 import param
 
 from pounding import simulate
@@ -103,7 +106,7 @@ class PoundingModel(param.Parameterized):
     B1 = param.Number(0.085, bounds=(0.005, 2.0), step=0.005, label="envelope B1 [1/s]", doc="Shinozuka-Sato decay constant B1 (Eq. 9), below B2.")
     B2 = param.Number(0.17, bounds=(0.01, 5.0), step=0.005, label="envelope B2 [1/s]", doc="Shinozuka-Sato decay constant B2 (Eq. 9), above B1.")
 
-    records = param.Integer(40, bounds=(10, 500), step=10, label="records", doc="Records of the reduced-sample Monte Carlo study and of the Monte Carlo design gap.")
+    records = param.Integer(50, bounds=(10, 500), step=10, label="records", doc="Records of the reduced-sample Monte Carlo study and of the Monte Carlo design gap.")
     seed = param.Integer(DEFAULT_SEED, bounds=(0, None), label="seed", doc="Seed of the study and of the design gap's records.")
 
     # --- outputs (not inputs) ---
@@ -131,6 +134,7 @@ class PoundingModel(param.Parameterized):
         self._extra_excitation: dict = {}
         self._cancel: threading.Event | None = None
         self._mc_case_key = None
+        self._mc_gap: float | None = None
         self._design_gap_cancel: threading.Event | None = None
         self._design_gap_key = None
         self._load_preset()
@@ -284,36 +288,31 @@ class PoundingModel(param.Parameterized):
 
     # --- Monte Carlo ---------------------------------------------------------------
 
-    @staticmethod
-    def _key(case):
-        """What a study depends on apart from the gap: its points share one plot,
-        and the design gap (free motion) holds at every gap. The unit system
-        the inputs are shown in is not part of it (the case is SI)."""
-        if case is None:
-            return None
-        from dataclasses import replace
-
-        return replace(case, contact=replace(case.contact, gap=0.0), units="SI")
-
     def _invalidate_studies(self, case) -> None:
         """A change of inputs: cancel a running study and drop results of another case.
 
-        A study with contact runs at one gap: any change cancels it. The
-        design gap does not depend on the gap: a change of the gap alone
-        neither cancels nor drops it."""
-        key = self._key(case)
+        A study with contact is for one case at one gap: a change of either
+        cancels it, and a change of the case (not of the gap) drops its points.
+        The design gap (free motion) depends on neither the gap nor the contact
+        law: only a change of the buildings, the excitation or the contact
+        floors cancels or drops it. Switching the unit system changes nothing:
+        the case is SI, and its round trip through the display units moves a
+        value by a rounding error at most (compared with a tolerance).
+        """
+        study, free = _study_key(case), _free_motion_key(case)
+        gap = None if case is None else case.contact.gap
         # The status first: the study may end as soon as its event is set.
-        if self._cancel is not None and not self._cancel.is_set():
+        if self._cancel is not None and not self._cancel.is_set() and not (_same(study, self._mc_case_key) and _same(gap, self._mc_gap)):
             self.mc_status = "Monte Carlo cancelled: the inputs changed while it ran."
             self._cancel.set()
-        if key != self._mc_case_key:
-            self._mc_case_key = key
+        if not _same(study, self._mc_case_key):
+            self._mc_case_key = study
             if self.mc_points:
                 self.mc_points = []
                 if not self.mc_running:
                     self.mc_status = "Monte Carlo results cleared: the inputs changed."
-        if key != self._design_gap_key:
-            self._design_gap_key = key
+        if not _same(free, self._design_gap_key):
+            self._design_gap_key = free
             if self._design_gap_cancel is not None and not self._design_gap_cancel.is_set():
                 self.design_gap_status = "Monte Carlo design gap cancelled: the inputs changed while it ran."
                 self._design_gap_cancel.set()
@@ -355,7 +354,7 @@ class PoundingModel(param.Parameterized):
         if self.snapshot is None:
             return None
         gap = self.snapshot.case.contact.gap
-        matching = [m for m in self.mc_points if m.gap == gap]
+        matching = [m for m in self.mc_points if _same(m.gap, gap)]
         return matching[-1] if matching else None
 
     def run_monte_carlo(self) -> None:
@@ -363,9 +362,9 @@ class PoundingModel(param.Parameterized):
         if self.mc_running or self.snapshot is None:
             return
         case = self.snapshot.case
-        key = self._key(case)
+        key = _study_key(case)
         records, seed = self.records, self.seed
-        self._cancel = threading.Event()
+        self._cancel, self._mc_gap = threading.Event(), case.contact.gap
         self.param.update(mc_running=True, mc_progress=0, mc_status=f"Monte Carlo: 0 of {records} records")
         self._submit(
             partial(simulate, case, records, seed), self._cancel, self._progress,
@@ -386,16 +385,17 @@ class PoundingModel(param.Parameterized):
         if cancel is not self._cancel:
             return
         self._cancel = None
-        if result is not None and not cancel.is_set() and key == self._mc_case_key:
+        if result is not None and not cancel.is_set() and _same(key, self._mc_case_key):
             point = MonteCarloPoint.from_result(result)
+            # param sets the values in this order: `running` last, so whoever sees it off sees the rest.
             self.param.update(
-                mc_running=False, mc_progress=100, mc_points=[*self.mc_points, point],
-                mc_status=f"Monte Carlo done: {result.n_records} records.",
+                mc_progress=100, mc_points=[*self.mc_points, point], mc_status=f"Monte Carlo done: {result.n_records} records.",
+                mc_running=False,
             )
         elif error is not None:
-            self.param.update(mc_running=False, mc_status=f"Monte Carlo failed: {error}")
+            self.param.update(mc_status=f"Monte Carlo failed: {error}", mc_running=False)
         else:
-            self.param.update(mc_running=False, mc_progress=0, mc_status=self.mc_status if "changed" in self.mc_status else "Monte Carlo cancelled.")
+            self.param.update(mc_progress=0, mc_status=self.mc_status if "changed" in self.mc_status else "Monte Carlo cancelled.", mc_running=False)
 
     # --- Monte Carlo design gap ----------------------------------------------------
 
@@ -423,7 +423,7 @@ class PoundingModel(param.Parameterized):
         if shown is not None and (shown.n_records, shown.seed) == (records, seed):
             self.design_gap_status = f"Monte Carlo design gap: already computed for these inputs ({records} records, seed {seed})."
             return
-        key = self._key(case)
+        key = _free_motion_key(case)
         self._design_gap_cancel = threading.Event()
         self.param.update(
             design_gap_running=True, design_gap_progress=0, design_gap_status=f"Monte Carlo design gap: 0 of {records} records (free motion)"
@@ -449,19 +449,42 @@ class PoundingModel(param.Parameterized):
         if cancel is not self._design_gap_cancel:
             return
         self._design_gap_cancel = None
-        if result is not None and not cancel.is_set() and key == self._design_gap_key:
-            self.param.update(
-                design_gap_running=False, design_gap_progress=100, design_gap_result=result,
-                design_gap_status=f"Monte Carlo design gap done: {result.n_records} records.",
+        if result is not None and not cancel.is_set() and _same(key, self._design_gap_key):
+            self.param.update(  # `running` last, as in _finished
+                design_gap_progress=100, design_gap_result=result,
+                design_gap_status=f"Monte Carlo design gap done: {result.n_records} records.", design_gap_running=False,
             )
         elif error is not None:
-            self.param.update(design_gap_running=False, design_gap_status=f"Monte Carlo design gap failed: {error}")
+            self.param.update(design_gap_status=f"Monte Carlo design gap failed: {error}", design_gap_running=False)
         else:
             status = self.design_gap_status
             self.param.update(
-                design_gap_running=False, design_gap_progress=0,
-                design_gap_status=status if "changed" in status else "Monte Carlo design gap cancelled.",
+                design_gap_progress=0, design_gap_status=status if "changed" in status else "Monte Carlo design gap cancelled.",
+                design_gap_running=False,
             )
+
+
+def _study_key(case):
+    """What a study with contact depends on apart from the gap (its points share one plot)."""
+    return None if case is None else (case.buildings, case.excitation, dataclasses.replace(case.contact, gap=0.0))
+
+
+def _free_motion_key(case):
+    """What the records' free motion, and so the design gap, depends on: not the contact law or the gap."""
+    return None if case is None else (case.buildings, case.excitation, case.contact.levels)
+
+
+def _same(a, b) -> bool:
+    """Equal, floats within a rounding error (the unit round trip), through dataclasses and tuples."""
+    if isinstance(a, float) and isinstance(b, float):
+        return math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-15)
+    if dataclasses.is_dataclass(a) and type(a) is type(b):
+        return all(_same(getattr(a, f.name), getattr(b, f.name)) for f in dataclasses.fields(a))
+    if isinstance(a, tuple | list) and isinstance(b, tuple | list):
+        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        return np.shape(a) == np.shape(b) and bool(np.allclose(a, b, rtol=1e-9, atol=1e-15))
+    return a == b
 
 
 _LABELS = {
