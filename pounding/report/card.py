@@ -73,7 +73,7 @@ def result_html(
         f'<p class="probability">Probability of pounding during the {case.excitation.duration:g} s record: '
         f'<b><span class="pounding-probability">{100 * e.pounding_probability:.3g} %</span></b> '
         f"at the gap of {d.length(case.contact.gap)}. "
-        f'Gap for {100 * e.target_probability:.0f} % probability of no pounding: '
+        f'Gap for {100 * e.target_probability:g} % probability of no pounding: '
         f'<b><span class="required-gap">{d.length(e.required_gap)}</span></b> '
         f"(SRSS {d.length(e.separation_rules['srss'])}, ABS {d.length(e.separation_rules['abs'])}, "
         f"DDC {d.length(e.separation_rules['ddc'])}).</p>"
@@ -99,7 +99,7 @@ def _design_gap_html(snapshot: Snapshot, d: Display, result: DesignGap | None, n
     if result is None:
         if not note:
             return ""
-        return f'<p class="monte-carlo-gap">Monte Carlo gap for {100 * e.target_probability:.0f} % no pounding: {html.escape(note)}</p>'
+        return f'<p class="monte-carlo-gap">Monte Carlo gap for {100 * e.target_probability:g} % no pounding: {html.escape(note)}</p>'
     if result.target_probability != e.target_probability:
         raise ValueError(f"design_gap is for {result.target_probability}, the closed form for {e.target_probability}: not comparable")
     bound = (
@@ -110,7 +110,7 @@ def _design_gap_html(snapshot: Snapshot, d: Display, result: DesignGap | None, n
     # Below 1 the closed form is the narrower gap: more records would pound at it than the target allows.
     ratio = f"{e.required_gap / result.gap:.3g}" if result.gap > 0 else "n/a"
     return (
-        f'<p class="monte-carlo-gap">Monte Carlo gap for {100 * result.target_probability:.0f} % no pounding: '
+        f'<p class="monte-carlo-gap">Monte Carlo gap for {100 * result.target_probability:g} % no pounding: '
         f'<b><span class="mc-design-gap">{d.length(result.gap)}</span></b> '
         f"({bound}; free motion of "
         f'<span class="mc-design-gap-records">{result.n_records}</span> records, seed {result.seed}); '

@@ -67,6 +67,10 @@ class Figures:
                   legend_label="Monte Carlo pounding fraction")
         g.legend.click_policy = "hide"
         g.add_layout(g.legend[0], "right")  # beside the plot: the curves fill its corners
+        # The Monte Carlo entries show only when there is a study to show (see fill).
+        self._monte_carlo_legend = {
+            item.label.value: item for item in g.legend[0].items if item.label.value.startswith("Monte Carlo")
+        }
         g.add_tools(HoverTool(tooltips=[("gap", "@gap"), ("force", "@force")]))
         self.gap = g
 
@@ -131,6 +135,8 @@ class Figures:
         else:
             _refill(src["design_gap"], gap=[design_gap.gap / ls] * 2, probability=[0.0, 1.0])
         points = [m for m in monte_carlo if math.isfinite(m.force_low)]
+        for label, item in self._monte_carlo_legend.items():
+            item.visible = (design_gap is not None) if label == "Monte Carlo gap for the target" else bool(points)
         _refill(
             src["mc"],
             gap=[m.gap / ls for m in points], force=[m.force_max_mean / fs for m in points], low=[m.force_low / fs for m in points],
