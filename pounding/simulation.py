@@ -29,6 +29,7 @@ __all__ = [
     "TimeHistory",
     "design_gap",
     "integrate",
+    "records_for_bound",
     "simulate",
     "simulate_record",
 ]
@@ -362,9 +363,8 @@ class DesignGap:
 
     @property
     def records_for_bound(self) -> int:
-        """The fewest records that give the 90 % bound: the largest of N peaks
-        bounds the gap for probability p with confidence 1 - p^N."""
-        return math.ceil(math.log(0.1) / math.log(self.target_probability) - 1e-9)
+        """The fewest records that give :attr:`upper_bound` (:func:`records_for_bound`)."""
+        return records_for_bound(self.target_probability)
 
     def pounding_fraction(self, gap: float) -> float:
         """Fraction of the records that pound at ``gap`` [m]."""
@@ -381,6 +381,14 @@ class DesignGap:
             "peaks": self.peaks.tolist(),
             "units": {"length": "m"},
         }
+
+
+def records_for_bound(target_probability: float) -> int:
+    """The fewest records whose free peaks give a one-sided 90 % confidence
+    bound on the gap for ``target_probability`` of no pounding: the largest of
+    N peaks bounds it with confidence 1 - p^N."""
+    check_probability(target_probability)
+    return math.ceil(math.log(0.1) / math.log(target_probability) - 1e-9)
 
 
 def design_gap(

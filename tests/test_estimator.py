@@ -119,11 +119,12 @@ def test_bad_gaps_are_named():
         force_versus_gap(load_case("section5-T2-0.4"), [0.01, -0.01])
 
 
-def test_every_number_is_finite_and_in_range_across_the_claimed_ranges():
+def test_every_number_is_finite_and_in_range_over_the_claimed_ranges_and_beyond():
     """100 cases drawn from the ranges the estimator claims (every kind of pair,
-    stationary and modulated), each also at gap 0 and 50 cm and at restitution
-    0.05 and 0.99: no NaN or infinity, probabilities in [0, 1], forces >= 0, a
-    positive gap for the target, and force and probability never rising with the gap."""
+    stationary and modulated), each also pushed beyond them, to gap 0 and 50 cm
+    and restitution 0.05 and 0.99: no NaN or infinity, probabilities in [0, 1],
+    forces >= 0, a positive gap for the target, and (in the ranges) force and
+    probability never rising with the gap."""
     from pounding.validation import random_cases
 
     for case in random_cases(1):
@@ -139,4 +140,5 @@ def test_every_number_is_finite_and_in_range_across_the_claimed_ranges():
             for restitution in (0.05, 0.99):
                 extreme = estimate(_with(case, gap=gap, restitution=restitution))
                 assert all(math.isfinite(v) for v in (extreme.force_expected, extreme.pounding_probability, extreme.required_gap))
-                assert extreme.force_expected >= 0.0, (case.name, gap, restitution)
+                assert extreme.force_expected >= 0.0 and 0.0 <= extreme.pounding_probability <= 1.0, (case.name, gap, restitution)
+                assert extreme.required_gap > 0.0, (case.name, gap, restitution)
