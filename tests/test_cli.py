@@ -161,3 +161,18 @@ def test_help_has_examples():
         out = run(*args)
         assert out.returncode == 0
         assert "example" in out.stdout
+
+
+def test_a_case_the_methods_cannot_compute_fails_in_one_line(monkeypatch, capsys):
+    """A linearization that does not converge (here forced) ends the command with one line and exit 1."""
+    import pounding.estimator
+    from pounding.cli import main
+    from pounding.errors import ConvergenceError
+
+    def fails(*_args, **_kwargs):
+        raise ConvergenceError("building 2, storey 1: the linearization did not converge (last iterate ...)")
+
+    monkeypatch.setattr(pounding.estimator, "estimate", fails)
+    assert main(["estimate", "section5-T2-0.4"]) == 1
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == ["pounding estimate: failed: building 2, storey 1: the linearization did not converge (last iterate ...)"]
