@@ -106,6 +106,12 @@ class ContactResponse:
         return float(self.covariance[_X1, _X2])
 
     @property
+    def correlation_displacement(self) -> float:
+        """Correlation of the two contact floors' displacements x1 and x2 [-]: near 1,
+        X = x1 - x2 is the small part in which the buildings do not move together."""
+        return self.covariance_displacement / (self._sigma(_X1) * self._sigma(_X2))
+
+    @property
     def covariance_velocity(self) -> float:
         """E[v1 v2] [m^2/s^2] (Eq. 18)."""
         return float(self.covariance[_V1, _V2])
