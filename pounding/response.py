@@ -38,6 +38,7 @@ __all__ = [
     "FloorStatistics",
     "contact_covariance_history",
     "contact_output_matrix",
+    "floor_receptance",
     "floor_statistics",
     "frequency_response",
     "psd_relative_velocity",
@@ -228,6 +229,37 @@ def response_with_residual(case, linearized=None, model: StateSpace | None = Non
     return ContactResponse(case.contact.levels, linear.covariance + residual, "lyapunov+residual")
 
 
+def _storey_stiffness(linearized: LinearizedBuilding, w: np.ndarray) -> np.ndarray:
+    """Complex storey stiffness k_dyn(w) = alpha k + (1 - alpha) k c_e i w / (i w - k_e) + i w c
+    of each storey [N/m], shape (frequencies, storeys); ``w`` of shape (frequencies, 1)."""
+    building = linearized.building
+    iw = 1j * w
+    k = building.stiffnesses
+    alpha = np.array([s.bouc_wen.alpha for s in building.storeys])
+    # An elastic storey (k_e = 0) has z = c_e u at every frequency, omega = 0 included.
+    with np.errstate(invalid="ignore", divide="ignore"):
+        z_ratio = np.where(linearized.hysteretic, linearized.c_e * iw / (iw - linearized.k_e), linearized.c_e + 0j)
+    return alpha * k + (1.0 - alpha) * k * z_ratio + iw * building.storey_damping()
+
+
+def _floor_response(linearized: LinearizedBuilding, omega, load: np.ndarray) -> np.ndarray:
+    """Floor displacements [m] under harmonic floor forces ``load`` [N] (one per
+    floor): the solution H of (-w^2 M + T^T diag(k_dyn) T) H = load."""
+    omega = np.asarray(omega, dtype=float)
+    building = linearized.building
+    w = omega.reshape(-1, 1)
+    storey = _storey_stiffness(linearized, w)
+    masses = building.masses
+    N = building.n_storeys
+    if N == 1:
+        response = load[0] / (-(w**2) * masses[0] + storey)
+    else:
+        drift = np.eye(N) - np.eye(N, k=-1)
+        dynamic = np.einsum("ji,fj,jk->fik", drift, storey, drift) - (w**2)[:, :, None] * np.diag(masses)
+        response = np.linalg.solve(dynamic, np.broadcast_to(load[:, None], (w.shape[0], N, 1)).astype(complex))[..., 0]
+    return response.reshape(omega.shape + (N,))
+
+
 def frequency_response(linearized: LinearizedBuilding, omega) -> np.ndarray:
     """Complex FRF of the floor displacements relative to the ground per unit
     ground acceleration [s^2], from Eq. 1 (36-39) and Eq. 19.
@@ -246,26 +278,20 @@ def frequency_response(linearized: LinearizedBuilding, omega) -> np.ndarray:
     -------
     ndarray, complex, shape omega.shape + (n_storeys,)
     """
-    omega = np.asarray(omega, dtype=float)
-    building = linearized.building
-    w = omega.reshape(-1, 1)
-    iw = 1j * w
-    k = building.stiffnesses
-    alpha = np.array([s.bouc_wen.alpha for s in building.storeys])
-    hysteretic = linearized.hysteretic
-    # An elastic storey (k_e = 0) has z = c_e u at every frequency, omega = 0 included.
-    with np.errstate(invalid="ignore", divide="ignore"):
-        z_ratio = np.where(hysteretic, linearized.c_e * iw / (iw - linearized.k_e), linearized.c_e + 0j)
-    storey = alpha * k + (1.0 - alpha) * k * z_ratio + iw * building.storey_damping()
-    masses = building.masses
-    N = building.n_storeys
-    if N == 1:
-        response = -masses[0] / (-(w**2) * masses[0] + storey)
-    else:
-        drift = np.eye(N) - np.eye(N, k=-1)
-        dynamic = np.einsum("ji,fj,jk->fik", drift, storey, drift) - (w**2)[:, :, None] * np.diag(masses)
-        response = np.linalg.solve(dynamic, np.broadcast_to(-masses[:, None], (w.shape[0], N, 1)).astype(complex))[..., 0]
-    return response.reshape(omega.shape + (N,))
+    return _floor_response(linearized, omega, -linearized.building.masses)
+
+
+def floor_receptance(linearized: LinearizedBuilding, omega, floor: int) -> np.ndarray:
+    """Complex receptance of one floor [m/N]: its displacement under a harmonic
+    force of 1 N on itself (``floor`` counted from 0 = first floor).
+
+    Returns
+    -------
+    ndarray, complex, shape omega.shape
+    """
+    load = np.zeros(linearized.building.n_storeys)
+    load[floor] = 1.0
+    return _floor_response(linearized, omega, load)[..., floor]
 
 
 def _contact_frf(case, linearized, omega) -> np.ndarray:
@@ -419,19 +445,30 @@ def contact_covariance_history(case, linearized=None, times=None, modulation: st
     return outputs @ history @ outputs.T
 
 
+def spectral_grid() -> np.ndarray:
+    """The fixed logarithmic frequency grid [rad/s] of the spectral moments of X:
+    fine enough for damping ratios down to 1 %; the yielded storeys keep
+    response down to very low frequencies, hence it starts at 1e-4 rad/s."""
+    return np.geomspace(1e-4, 2.0e3, 2001)
+
+
+def relative_displacement_psd(case, linearized, omega) -> np.ndarray:
+    """One-sided PSD G_X = 2 S_X of the relative displacement X = x1 - x2 at the
+    contact floors under the ground spectrum [m^2 s/rad]."""
+    y = _contact_frf(case, linearized, omega)
+    return 2.0 * np.abs(y[..., _X1] - y[..., _X2]) ** 2 * case.excitation.spectrum.psd(omega)
+
+
 def spectral_moments_relative_displacement(case, linearized=None, orders=(0, 1, 2)) -> np.ndarray:
     """One-sided spectral moments lambda_k = int_0^inf w^k G_X(w) dw of the
     relative displacement X = x1 - x2 at the contact floors (G_X = 2 S_X).
 
     lambda_0 = sigma_X^2 and lambda_2 = sigma_V^2; lambda_1, which no
-    covariance gives, sets the bandwidth. Integrated on a fixed logarithmic
-    grid fine enough for damping ratios down to 1 %; the yielded storeys keep
-    response down to very low frequencies, hence the grid starts at 1e-4 rad/s.
+    covariance gives, sets the bandwidth. Integrated on :func:`spectral_grid`.
     """
     linearized = _linearized(case, linearized)
-    omega = np.geomspace(1e-4, 2.0e3, 2001)
-    y = _contact_frf(case, linearized, omega)
-    spectrum = 2.0 * np.abs(y[..., _X1] - y[..., _X2]) ** 2 * case.excitation.spectrum.psd(omega)
+    omega = spectral_grid()
+    spectrum = relative_displacement_psd(case, linearized, omega)
     return np.array([np.trapezoid(omega**k * spectrum, omega) for k in orders])
 
 
