@@ -299,6 +299,8 @@ def _estimate(args) -> int:
     print(f"  expected peak impact v    {result.relative_velocity_expected:.4f} m/s")
     print(f"  expected impacts          {result.impacts_expected:.2f}   (approaches from below the gap; rebounds not counted)")
     print(f"  force braking an impact   {_format_force(result.opposing_force)}   (the buildings' own, at the gap)")
+    print(f"  impacts' damping          sigma_V x{result.impacting_velocity_ratio:.3f} before an approach   "
+          f"(memory {result.impact_memory:.2f}; a dashpot of {result.impact_dashpot:.4g} N s/m between the floors)")
     print(f"  pounding probability      {100 * result.pounding_probability:.1f} %")
     print(f"  gap for {100 * result.target_probability:g} % no pounding  {100 * result.required_gap:.2f} cm"
           f"   (SRSS {100 * rules['srss']:.2f} cm, ABS {100 * rules['abs']:.2f} cm, DDC {100 * rules['ddc']:.2f} cm)")

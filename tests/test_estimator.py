@@ -123,8 +123,10 @@ def test_every_number_is_finite_and_in_range_over_the_claimed_ranges_and_beyond(
     """100 cases drawn from the ranges the estimator claims (every kind of pair,
     stationary and modulated), each also pushed beyond them, to gap 0 and 50 cm
     and restitution 0.05 and 0.99: no NaN or infinity, probabilities in [0, 1],
-    forces >= 0, a positive gap for the target, and (in the ranges) force and
-    probability never rising with the gap."""
+    forces >= 0, a positive gap for the target, and (in the ranges) the
+    probability never rising with the gap. (The force may rise with a small gap:
+    fewer impacts damp the motion less; Monte Carlo shows it, see
+    test_estimator_accuracy.py.)"""
     from pounding.validation import random_cases
 
     for case in random_cases(1):
@@ -134,7 +136,7 @@ def test_every_number_is_finite_and_in_range_over_the_claimed_ranges_and_beyond(
         assert all(math.isfinite(v) for v in numbers), case.name
         assert 0.0 <= result.pounding_probability <= 1.0 and result.force_expected >= 0.0 and result.required_gap > 0.0, case.name
         curve = result.gap_curve(np.linspace(0.0, 3.0 * result.required_gap, 30))
-        assert np.all(np.diff(curve.force_expected) <= 1e-9 * curve.force_expected[0]), case.name
+        assert np.all(np.isfinite(curve.force_expected)) and np.all(curve.force_expected >= 0.0), case.name
         assert np.all(np.diff(curve.pounding_probability) <= 1e-12), case.name
         for gap in (0.0, 0.5):
             for restitution in (0.05, 0.99):

@@ -59,6 +59,11 @@ def result_html(
         _row("peak penetration", "n/a", d.length(p.penetration_expected)),
         _row("peak force ratio K(e)", f"{e.peak_force_ratio:.4g} (free masses)", "1 (undamped Hertz)"),
         _row("buildings' force braking an impact", d.force(e.opposing_force), "(not modelled)"),
+        _row(
+            "impacts' damping of the motion before an approach",
+            f"sigma<sub>V</sub> &times; {e.impacting_velocity_ratio:.3f} (memory {e.impact_memory:.2f})",
+            "(not modelled)",
+        ),
         _row("expected number of impacts", f"{e.impacts_expected:.4g} (approaches; rebounds not counted)", "(ignores the gap)"),
     ]
     if monte_carlo is not None:

@@ -1,0 +1,169 @@
+"""The impacts' damping of the relative motion (pounding.impact_damping):
+each piece against an independent route, and the fixed point against its
+definition."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+from scipy.linalg import expm
+
+from pounding import load_case
+from pounding.estimator import estimate
+from pounding.impact_damping import impact_damping
+from pounding.linearization import linearize_pair, pair_state_space
+from pounding.response import contact_output_matrix
+from pounding.structures import BoucWen
+from pounding.validation import _mdof_case, _vary
+
+CASES = {
+    "yielding one-storey pair": lambda: load_case("section5-T2-0.8"),
+    "elastic pair": lambda: _vary(load_case("section5-T2-0.4"), elastic=True, periods=(0.61, 0.48), g0=5.86, restitution=0.42),
+    "three-storey against two-storey": _mdof_case,
+}
+
+
+def _pair(case):
+    linearized = linearize_pair(case)
+    model = pair_state_space(case, linearized)
+    return linearized, model, impact_damping(case, linearized, model)
+
+
+def _with_dashpot(case, model, dashpot):
+    """The pair's state space with a dashpot between the contact floors, written
+    into the equations of motion: m1 v1' += -c (v1 - v2), m2 v2' += +c (v1 - v2)."""
+    outputs = contact_output_matrix(case, model)
+    floor_1, floor_2 = int(np.flatnonzero(outputs[2])[0]), int(np.flatnonzero(outputs[3])[0])
+    m1, m2 = case.contact_masses
+    matrix = model.matrix.copy()
+    relative = outputs[2] - outputs[3]
+    matrix[floor_1] -= dashpot / m1 * relative
+    matrix[floor_2] += dashpot / m2 * relative
+    return dataclasses.replace(model, matrix=matrix)
+
+
+def _sigmas(case, model):
+    outputs = contact_output_matrix(case, model)
+    rows = np.array([outputs[0] - outputs[1], outputs[2] - outputs[3]])
+    return np.sqrt(np.diag(rows @ model.covariance() @ rows.T))
+
+
+@pytest.mark.parametrize("kind", CASES)
+def test_the_dashpot_divides_the_spectrum_as_the_state_space_with_a_dashpot_says(kind):
+    """The feedback route (X / (1 + c G) on the frequency grid) against the
+    Lyapunov equation of the pair with the dashpot in its equations of motion."""
+    case = CASES[kind]()
+    _, model, damping = _pair(case)
+    free = _sigmas(case, model)
+    for dashpot in (1e3, 1e4, 1e5):
+        ratio_x, ratio_v, bandwidth = damping.with_dashpot(dashpot)
+        sigmas = _sigmas(case, _with_dashpot(case, model, dashpot))
+        assert ratio_x == pytest.approx(sigmas[0] / free[0], rel=5e-4)
+        assert ratio_v == pytest.approx(sigmas[1] / free[1], rel=5e-4)
+        assert 0.0 < bandwidth < 1.0
+    assert damping.with_dashpot(0.0)[2] == pytest.approx(damping.bandwidth, rel=1e-12)
+
+
+@pytest.mark.parametrize("kind", CASES)
+def test_memory_is_the_jump_response_averaged_over_exponential_intervals(kind):
+    """rho against (omega x_J)^2 + v_J^2 of the pair's state space after the
+    impact's velocity jump (scipy's expm), integrated over the intervals' law."""
+    case = CASES[kind]()
+    _, model, damping = _pair(case)
+    outputs = contact_output_matrix(case, model)
+    m1, m2 = case.contact_masses
+    jump = (-m2 * outputs[2] + m1 * outputs[3]) / (m1 + m2)  # V falls by 1, momentum kept
+    rows = np.array([outputs[0] - outputs[1], outputs[2] - outputs[3]])
+    omega = damping.sigma_relative_velocity / damping.sigma_relative_displacement
+    assert rows[1] @ jump == pytest.approx(-1.0)
+
+    def share(lag):
+        x, v = rows @ expm(model.matrix * lag) @ jump
+        return min(1.0, (omega * x) ** 2 + v**2)
+
+    for rate in (0.3 * omega, omega / math.pi, 2.0 * omega):
+        expected, _ = quad(lambda lag: share(lag) * rate * math.exp(-rate * lag), 0.0, 40.0 / rate, limit=400)
+        assert damping.memory(rate) == pytest.approx(expected, rel=2e-3, abs=1e-5)
+
+
+def test_a_single_oscillator_forgets_at_its_own_damping():
+    """For one elastic oscillator the share of a disturbance's energy left after
+    an exponential interval of rate nu is nu / (nu + 2 zeta omega_n)."""
+    base = load_case("section5-T2-0.4")
+    building, wall = base.buildings
+    storey = dataclasses.replace(building.storeys[0], bouc_wen=BoucWen(alpha=1.0))
+    mass = storey.mass * 1e4  # the second building as a wall: heavy and stiff
+    rigid = dataclasses.replace(wall.storeys[0], mass=mass, stiffness=mass * (2 * math.pi / 0.02) ** 2, bouc_wen=BoucWen(alpha=1.0))
+    case = dataclasses.replace(
+        base,
+        buildings=(dataclasses.replace(building, storeys=(storey,)), dataclasses.replace(wall, storeys=(rigid,))),
+        name="oscillator against a wall",
+    )
+    _, _, damping = _pair(case)
+    natural = math.sqrt(storey.stiffness / storey.mass)
+    zeta = case.buildings[0].storey_damping()[0] / (2.0 * storey.mass * natural)
+    for rate in (natural / math.pi, 2.0 * natural / math.pi):
+        assert damping.memory(rate) == pytest.approx(rate / (rate + 2.0 * zeta * natural), rel=0.01)
+
+
+@pytest.mark.parametrize("kind", CASES)
+def test_the_dashpot_leaves_the_motion_the_energy_its_impacts_leave_it(kind):
+    """At the solved dashpot, sigma_V^2 has fallen to (1 - rho) / (1 - rho e^2)
+    of the free one, rho the memory at the damped motion's impact rate
+    (Rice's rate with the time cut): the defining equation, from the public pieces."""
+    case = CASES[kind]()
+    _, _, damping = _pair(case)
+    e = case.contact.restitution
+    for gap in (0.0, 0.5 * damping.sigma_relative_displacement, case.contact.gap):
+        motion = damping.damped([gap])
+        ratio_x, ratio_v, bandwidth = damping.with_dashpot(motion.dashpot[0])
+        sigma_x = damping.sigma_relative_displacement * ratio_x
+        sigma_v = damping.sigma_relative_velocity * ratio_v
+        u = gap / sigma_x
+        rate = sigma_v / sigma_x * math.exp(-0.5 * u * u) / (math.pi * math.erfc(-u / math.sqrt(2.0)))
+        rho = damping.memory(rate)
+        assert motion.memory[0] == pytest.approx(rho, rel=1e-5, abs=1e-9)
+        assert ratio_v**2 == pytest.approx((1.0 - rho) / (1.0 - rho * e * e), abs=1e-6)
+        assert (motion.ratio_displacement[0], motion.ratio_velocity[0], motion.bandwidth[0]) == pytest.approx(
+            (ratio_x, ratio_v, bandwidth), rel=1e-9
+        )
+
+
+def test_no_dissipation_and_no_impacts_change_nothing():
+    """e = 1 takes no energy; a gap far beyond sigma_X has no impacts."""
+    case = CASES["elastic pair"]()
+    elastic = impact_damping(_vary(case, restitution=1.0))
+    assert elastic.damped([0.0]).dashpot[0] == 0.0 and elastic.damped([0.0]).ratio_velocity[0] == pytest.approx(1.0, rel=1e-12)
+    _, _, damping = _pair(case)
+    far = damping.damped([12.0 * damping.sigma_relative_displacement])
+    assert far.dashpot[0] == 0.0 and far.ratio_velocity[0] == pytest.approx(1.0, rel=1e-12)
+    near = damping.damped([0.0])
+    assert near.ratio_velocity[0] < 0.95  # this pair remembers its impacts
+
+
+def test_the_free_count_keeps_the_probability_and_the_gap_for_the_target():
+    """The first impact meets the free motion: the damping changes the force,
+    not the pounding probability or the gap for the target probability."""
+    case = CASES["elastic pair"]()
+    damped, free = estimate(case), estimate(case, impact_damping=False)
+    assert damped.pounding_probability == free.pounding_probability
+    assert damped.required_gap == free.required_gap
+    assert damped.impacting_velocity_ratio < 1.0 and free.impacting_velocity_ratio == 1.0
+    assert damped.force_expected < free.force_expected
+
+
+def test_gap_curve_agrees_with_single_estimates():
+    case = CASES["elastic pair"]()
+    result = estimate(case)
+    gaps = np.array([0.0, 0.01, 0.03])
+    curve = result.gap_curve(gaps)
+    for gap, force in zip(gaps, curve.force_expected):
+        single = estimate(_vary(case, gap=gap))
+        # the curve integrates on 81 speeds, the estimate on 121 (1e-4)
+        assert force == pytest.approx(single.force_expected, rel=1e-3)
+        assert single.to_dict()["impact_dashpot"] == pytest.approx(result.crossings.damped([gap]).dashpot[0], rel=1e-9)
+
