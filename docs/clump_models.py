@@ -210,9 +210,6 @@ def grid_table(cases=None, by_regime: bool = False) -> None:
     print("|---|---|---|---|---|---|---|---|---|")
     original = estimator._Crossings.intensity
     original_impacting = estimator._Crossings.impacting_intensity
-    # Without the impacts' damping the largest approach is counted on the free motion's
-    # count, so a variant of that count stands in for both.
-    estimator._Crossings.impacting_intensity = lambda self, gaps, velocities, motion: self.intensity(gaps, velocities)
 
     def patched(clumped):
         def intensity(self, gaps, velocities, clumps=True):
@@ -224,6 +221,9 @@ def grid_table(cases=None, by_regime: bool = False) -> None:
 
     errors, regimes = [], []
     try:
+        # Without the impacts' damping the largest approach is counted on the free motion's
+        # count, so a variant of that count stands in for both.
+        estimator._Crossings.impacting_intensity = lambda self, gaps, velocities, motion: self.intensity(gaps, velocities)
         for case in accuracy_cases() if cases is None else cases:
             mean = simulate(case, records=GRID_RECORDS, seed=SEED).force_max_mean
             if mean == 0.0:  # no record pounded: no relative error

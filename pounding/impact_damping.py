@@ -45,18 +45,21 @@ import numpy as np
 from numba import njit
 
 from .errors import ConvergenceError
+from .linearization import pair_state_space
 from .response import (
     ContactResponse,
     _contact_floors,
     _linearized,
-    floor_receptance,
+    floor_response_and_receptance,
     relative_displacement_psd,
+    response_with_residual,
     spectral_grid,
 )
 
-__all__ = ["DampedMotion", "ImpactDamping", "impact_damping"]
+__all__ = ["U_MAX", "DampedMotion", "ImpactDamping", "impact_damping", "time_cut_rate", "vanmarcke_bandwidth"]
 
-_U_MAX = 10.0  # gap / sigma_X beyond this: no impact (exp(-50)), as in the estimator
+U_MAX = 10.0
+"""gap / sigma_X (and v / sigma_V) beyond which there is no impact (exp(-50))."""
 _TOLERANCE = 1e-7  # on the mismatch of sigma_V^2 / sigma_V,free^2 [-]
 
 
@@ -96,6 +99,24 @@ def _jump_memory(rate, frequency, rates, x_modes, v_modes):
 
 
 @njit(cache=True)
+def vanmarcke_bandwidth(lambda_0, lambda_1, lambda_2):
+    """Vanmarcke's q = sqrt(1 - lambda_1^2 / (lambda_0 lambda_2)) from spectral moments [-]."""
+    return math.sqrt(max(1.0 - lambda_1 * lambda_1 / (lambda_0 * lambda_2), 0.0))
+
+
+@njit(cache=True)
+def time_cut_rate(gap, sigma_x, sigma_v):
+    """Rice's rate of upcrossings of the gap per unit of time spent below it,
+    (sigma_V / (2 pi sigma_X)) exp(-u^2 / 2) / Phi(u), u = gap / sigma_X [1/s];
+    0 beyond :data:`U_MAX`."""
+    u = gap / sigma_x
+    if u >= U_MAX:
+        return 0.0
+    below = 0.5 * math.erfc(-u / math.sqrt(2.0))  # P(X < gap)
+    return sigma_v / (2.0 * math.pi * sigma_x) * math.exp(-0.5 * u * u) / below
+
+
+@njit(cache=True)
 def _spectral_sums(c, weights, psd, psd_omega, psd_omega2, feedback_re, feedback_im):
     """int G_X w^k / |1 + c G|^2 for k = 0, 1, 2 (trapezoid weights)."""
     s0 = 0.0
@@ -121,12 +142,7 @@ def _mismatch(c, gap, sigma_x, sigma_v, frequency, restitution, spectra, modes):
     s0, s1, s2 = _spectral_sums(c, weights, psd, psd_omega, psd_omega2, feedback_re, feedback_im)
     ratio_x = math.sqrt(s0 / free0)
     ratio_v = math.sqrt(s2 / free2)
-    damped_x = sigma_x * ratio_x
-    u = gap / damped_x
-    rate = 0.0
-    if u < _U_MAX:
-        below = 0.5 * math.erfc(-u / math.sqrt(2.0))
-        rate = sigma_v * ratio_v / damped_x * math.exp(-0.5 * u * u) / (2.0 * math.pi * below)
+    rate = time_cut_rate(gap, sigma_x * ratio_x, sigma_v * ratio_v)
     rho = _jump_memory(rate, frequency, rates, x_modes, v_modes) if rate > 0.0 else 0.0
     left = (1.0 - rho) / (1.0 - rho * restitution * restitution)
     return ratio_v * ratio_v - left, ratio_x, ratio_v, s0, s1, s2, rho, rate
@@ -137,15 +153,20 @@ def _solve_dashpots(gaps, sigma_x, sigma_v, frequency, restitution, dissipation,
     """c with g(c) = 0 for each gap (:func:`_mismatch`), by a safeguarded secant
     (Illinois) in units of the energy balance's m (1 - e^2) nu, bracketed from
     g(0) = 1 - R >= 0. Where g(0) is below 1e-12 or that unit's largest feedback
-    c |G| below 1e-10, the impacts change nothing: c = 0."""
+    c |G| below 1e-10, the impacts change nothing: c = 0.
+
+    One row per gap: c, sigma_X ratio, sigma_V ratio, bandwidth, rho; c = -1
+    marks a gap where no fixed point was found (raised by the caller). Along a
+    curve of gaps the previous gap's c is the first trial (neighbours differ little)."""
     out = np.zeros((gaps.size, 5))
+    previous = 0.0
     for k in range(gaps.size):
         gap = gaps[k]
         g_low, rx, rv, s0, s1, s2, rho, rate = _mismatch(0.0, gap, sigma_x, sigma_v, frequency, restitution, spectra, modes)
         scale = dissipation * rate
         c = 0.0
         if g_low > 1e-12 and scale * feedback_max > 1e-10:
-            low, high = 0.0, 1.0
+            low, high = 0.0, previous / scale if previous > 0.0 else 1.0
             g_high = _mismatch(high * scale, gap, sigma_x, sigma_v, frequency, restitution, spectra, modes)[0]
             doublings = 0
             while g_high >= 0.0 and doublings < 60:
@@ -160,7 +181,7 @@ def _solve_dashpots(gaps, sigma_x, sigma_v, frequency, restitution, dissipation,
             converged = False
             x = low
             for _ in range(200):
-                x = (low * g_high - high * g_low) / (g_high - g_low) if g_high < g_low else 0.5 * (low + high)
+                x = (low * g_high - high * g_low) / (g_high - g_low)  # g_low > 0 > g_high
                 g_x, rx, rv, s0, s1, s2, rho, rate = _mismatch(x * scale, gap, sigma_x, sigma_v, frequency, restitution, spectra, modes)
                 if abs(g_x) <= _TOLERANCE or high - low <= _TOLERANCE * high:
                     converged = True
@@ -179,10 +200,11 @@ def _solve_dashpots(gaps, sigma_x, sigma_v, frequency, restitution, dissipation,
                 out[k, 0] = -1.0
                 continue
             c = x * scale
+        previous = c
         out[k, 0] = c
         out[k, 1] = rx
         out[k, 2] = rv
-        out[k, 3] = math.sqrt(max(1.0 - s1 * s1 / (s0 * s2), 0.0))
+        out[k, 3] = vanmarcke_bandwidth(s0, s1, s2)
         out[k, 4] = rho
     return out
 
@@ -226,7 +248,7 @@ class ImpactDamping:
         contact floors over the free motion's, and its bandwidth q [-]."""
         weights, psd, psd_omega, psd_omega2, feedback_re, feedback_im, free0, free2 = self._spectra
         s0, s1, s2 = _spectral_sums(float(dashpot), weights, psd, psd_omega, psd_omega2, feedback_re, feedback_im)
-        return math.sqrt(s0 / free0), math.sqrt(s2 / free2), math.sqrt(max(1.0 - s1 * s1 / (s0 * s2), 0.0))
+        return math.sqrt(s0 / free0), math.sqrt(s2 / free2), vanmarcke_bandwidth(s0, s1, s2)
 
     def damped(self, gaps) -> DampedMotion:
         """The damped motion at each gap [m]."""
@@ -263,13 +285,13 @@ def _jump_modes(case, linearized, model) -> tuple[np.ndarray, np.ndarray, np.nda
         v_row = model.velocity[b][floors[b], states]
         jump = jumps[b] * v_row  # the floor's velocity is a state
         values, vectors = np.linalg.eig(matrix)
-        amplitudes = np.linalg.solve(vectors, jump.astype(complex))
-        x_part = signs[b] * (x_row @ vectors) * amplitudes
-        v_part = signs[b] * (v_row @ vectors) * amplitudes
         # The modal sums are exact for a diagonalizable matrix; a (nearly)
         # defective one would make them cancel in large terms.
         if not np.linalg.cond(vectors) < 1e8:
             raise ConvergenceError(f"building {b + 1}'s free dynamics has no usable eigenbasis for the impacts' memory")
+        amplitudes = np.linalg.solve(vectors, jump.astype(complex))
+        x_part = signs[b] * (x_row @ vectors) * amplitudes
+        v_part = signs[b] * (v_row @ vectors) * amplitudes
         rates.append(values)
         x_modes.append(x_part)
         v_modes.append(v_part)
@@ -289,22 +311,21 @@ def impact_damping(case, linearized=None, model=None, response: ContactResponse 
         The free motion's stationary response (default: with the residual's
         response, :func:`~pounding.response.response_with_residual`).
     """
-    from .linearization import pair_state_space
-    from .response import response_with_residual
-
     linearized = _linearized(case, linearized)
     if model is None:
         model = pair_state_space(case, linearized)
     if response is None:
         response = response_with_residual(case, linearized, model)
     omega = spectral_grid()
-    psd = relative_displacement_psd(case, linearized, omega)
-    f1, f2 = _contact_floors(case)
-    feedback = 1j * omega * (floor_receptance(linearized[0], omega, f1) + floor_receptance(linearized[1], omega, f2))
+    (h1, r1), (h2, r2) = (floor_response_and_receptance(lb, omega, floor) for lb, floor in zip(linearized, _contact_floors(case)))
+    psd = relative_displacement_psd(case, linearized, omega, (h1, h2))
+    feedback = 1j * omega * (r1 + r2)
+    # Trapezoid weights, explicit: the kernels sum the damped spectrum many times.
     weights = np.zeros_like(omega)
     steps = np.diff(omega)
     weights[:-1] += 0.5 * steps
     weights[1:] += 0.5 * steps
+    moments = [float(np.sum(weights * psd * omega**k)) for k in (0, 1, 2)]
     spectra = (
         weights,
         psd,
@@ -312,16 +333,15 @@ def impact_damping(case, linearized=None, model=None, response: ContactResponse 
         psd * omega**2,
         np.ascontiguousarray(feedback.real),
         np.ascontiguousarray(feedback.imag),
-        float(np.sum(weights * psd)),
-        float(np.sum(weights * psd * omega**2)),
+        moments[0],
+        moments[2],
     )
-    moments = [float(np.sum(weights * psd * omega**k)) for k in (0, 1, 2)]
     return ImpactDamping(
         response.sigma_relative_displacement,
         response.sigma_relative_velocity,
         case.reduced_mass,
         case.contact.restitution,
-        math.sqrt(max(1.0 - moments[1] ** 2 / (moments[0] * moments[2]), 0.0)),
+        vanmarcke_bandwidth(*moments),
         spectra,
         _jump_modes(case, linearized, model),
         float(np.max(np.abs(feedback))),

@@ -38,7 +38,7 @@ __all__ = [
     "FloorStatistics",
     "contact_covariance_history",
     "contact_output_matrix",
-    "floor_receptance",
+    "floor_response_and_receptance",
     "floor_statistics",
     "frequency_response",
     "psd_relative_velocity",
@@ -242,9 +242,10 @@ def _storey_stiffness(linearized: LinearizedBuilding, w: np.ndarray) -> np.ndarr
     return alpha * k + (1.0 - alpha) * k * z_ratio + iw * building.storey_damping()
 
 
-def _floor_response(linearized: LinearizedBuilding, omega, load: np.ndarray) -> np.ndarray:
-    """Floor displacements [m] under harmonic floor forces ``load`` [N] (one per
-    floor): the solution H of (-w^2 M + T^T diag(k_dyn) T) H = load."""
+def _floor_response(linearized: LinearizedBuilding, omega, loads: np.ndarray) -> np.ndarray:
+    """Floor displacements [m] under harmonic floor forces ``loads`` [N], shape
+    (floors, cases): the solutions H of (-w^2 M + T^T diag(k_dyn) T) H = load,
+    one factorization for all cases; shape omega.shape + (floors, cases)."""
     omega = np.asarray(omega, dtype=float)
     building = linearized.building
     w = omega.reshape(-1, 1)
@@ -252,12 +253,12 @@ def _floor_response(linearized: LinearizedBuilding, omega, load: np.ndarray) -> 
     masses = building.masses
     N = building.n_storeys
     if N == 1:
-        response = load[0] / (-(w**2) * masses[0] + storey)
+        response = (loads[0] / (-(w**2) * masses[0] + storey))[:, None, :]
     else:
         drift = np.eye(N) - np.eye(N, k=-1)
         dynamic = np.einsum("ji,fj,jk->fik", drift, storey, drift) - (w**2)[:, :, None] * np.diag(masses)
-        response = np.linalg.solve(dynamic, np.broadcast_to(load[:, None], (w.shape[0], N, 1)).astype(complex))[..., 0]
-    return response.reshape(omega.shape + (N,))
+        response = np.linalg.solve(dynamic, np.broadcast_to(loads, (w.shape[0],) + loads.shape).astype(complex))
+    return response.reshape(omega.shape + loads.shape)
 
 
 def frequency_response(linearized: LinearizedBuilding, omega) -> np.ndarray:
@@ -278,20 +279,18 @@ def frequency_response(linearized: LinearizedBuilding, omega) -> np.ndarray:
     -------
     ndarray, complex, shape omega.shape + (n_storeys,)
     """
-    return _floor_response(linearized, omega, -linearized.building.masses)
+    return _floor_response(linearized, omega, -linearized.building.masses[:, None])[..., 0]
 
 
-def floor_receptance(linearized: LinearizedBuilding, omega, floor: int) -> np.ndarray:
-    """Complex receptance of one floor [m/N]: its displacement under a harmonic
-    force of 1 N on itself (``floor`` counted from 0 = first floor).
-
-    Returns
-    -------
-    ndarray, complex, shape omega.shape
-    """
-    load = np.zeros(linearized.building.n_storeys)
-    load[floor] = 1.0
-    return _floor_response(linearized, omega, load)[..., floor]
+def floor_response_and_receptance(linearized: LinearizedBuilding, omega, floor: int) -> tuple[np.ndarray, np.ndarray]:
+    """One floor's FRF per unit ground acceleration [s^2] (:func:`frequency_response`)
+    and its receptance [m/N], its displacement under a harmonic force of 1 N on
+    itself (``floor`` counted from 0 = first floor); both of shape omega.shape."""
+    loads = np.zeros((linearized.building.n_storeys, 2))
+    loads[:, 0] = -linearized.building.masses
+    loads[floor, 1] = 1.0
+    response = _floor_response(linearized, omega, loads)[..., floor, :]
+    return response[..., 0], response[..., 1]
 
 
 def _contact_frf(case, linearized, omega) -> np.ndarray:
@@ -445,18 +444,25 @@ def contact_covariance_history(case, linearized=None, times=None, modulation: st
     return outputs @ history @ outputs.T
 
 
+_SPECTRAL_GRID = np.geomspace(1e-4, 2.0e3, 2001)
+_SPECTRAL_GRID.setflags(write=False)
+
+
 def spectral_grid() -> np.ndarray:
-    """The fixed logarithmic frequency grid [rad/s] of the spectral moments of X:
-    fine enough for damping ratios down to 1 %; the yielded storeys keep
-    response down to very low frequencies, hence it starts at 1e-4 rad/s."""
-    return np.geomspace(1e-4, 2.0e3, 2001)
+    """The fixed logarithmic frequency grid [rad/s] of the spectral moments of X
+    (read-only): fine enough for damping ratios down to 1 %; the yielded storeys
+    keep response down to very low frequencies, hence it starts at 1e-4 rad/s."""
+    return _SPECTRAL_GRID
 
 
-def relative_displacement_psd(case, linearized, omega) -> np.ndarray:
+def relative_displacement_psd(case, linearized, omega, floor_frfs=None) -> np.ndarray:
     """One-sided PSD G_X = 2 S_X of the relative displacement X = x1 - x2 at the
-    contact floors under the ground spectrum [m^2 s/rad]."""
-    y = _contact_frf(case, linearized, omega)
-    return 2.0 * np.abs(y[..., _X1] - y[..., _X2]) ** 2 * case.excitation.spectrum.psd(omega)
+    contact floors under the ground spectrum [m^2 s/rad]; ``floor_frfs``: the
+    contact floors' FRFs per unit ground acceleration, if computed already."""
+    if floor_frfs is None:
+        floor_frfs = [frequency_response(lb, omega)[..., floor] for lb, floor in zip(linearized, _contact_floors(case))]
+    h1, h2 = floor_frfs
+    return 2.0 * np.abs(h1 - h2) ** 2 * case.excitation.spectrum.psd(omega)
 
 
 def spectral_moments_relative_displacement(case, linearized=None, orders=(0, 1, 2)) -> np.ndarray:
