@@ -445,8 +445,21 @@ def _pair_statistics(case: Case, linearized, impact_damping: bool = True):
     the crossings history built on them; none depends on the gap."""
     model = pair_state_space(case, linearized)
     linear = response_lyapunov(case, linearized, model)
+    _check_relative_motion(case, linear)
     response = response_with_residual(case, linearized, model, linear)
     return model, linear, response, _crossings(case, linearized, model, response, linear, impact_damping)
+
+
+def _check_relative_motion(case: Case, linear: ContactResponse) -> None:
+    """Raise :class:`CaseError` where there is no relative motion to count
+    crossings of: no ground motion, or buildings that move alike."""
+    floors = math.sqrt(max(linear.covariance[0, 0], linear.covariance[1, 1]))
+    if floors == 0.0:
+        raise CaseError("excitation.G0", f"must be > 0 for the closed-form estimate, got {case.excitation.spectrum.G0:g}: "
+                        "without ground motion nothing moves and nothing pounds")
+    if linear.sigma_relative_displacement <= 1e-9 * floors:
+        raise CaseError("buildings", "the two buildings move alike at the contact floors (x1 - x2 is 0): under one "
+                        "ground motion they never approach each other, so there is no pounding to estimate")
 
 
 def _merged(

@@ -153,3 +153,16 @@ def test_every_number_is_finite_and_in_range_over_the_claimed_ranges_and_beyond(
                 assert all(math.isfinite(v) for v in (extreme.force_expected, extreme.pounding_probability, extreme.required_gap))
                 assert extreme.force_expected >= 0.0 and 0.0 <= extreme.pounding_probability <= 1.0, (case.name, gap, restitution)
                 assert extreme.required_gap > 0.0, (case.name, gap, restitution)
+
+
+def test_no_relative_motion_is_named_not_divided_by():
+    """Identical buildings never approach each other under one ground motion, and
+    without ground motion nothing moves: both are named, not a ZeroDivisionError."""
+    from pounding.validation import _vary
+
+    base = load_case("section5-T2-0.4")
+    with pytest.raises(CaseError, match="^buildings: the two buildings move alike"):
+        estimate(_vary(base, elastic=True, periods=(0.5, 0.5)))
+    with pytest.raises(CaseError, match="^excitation.G0: must be > 0"):
+        force_versus_gap(_vary(base, g0=0.0), [0.0, 0.01])
+    assert estimate(_vary(base, elastic=True, periods=(0.5, 0.51))).force_expected > 0.0  # nearly alike is fine
