@@ -108,7 +108,11 @@ def vanmarcke_bandwidth(lambda_0, lambda_1, lambda_2):
 def time_cut_rate(gap, sigma_x, sigma_v):
     """Rice's rate of upcrossings of the gap per unit of time spent below it,
     (sigma_V / (2 pi sigma_X)) exp(-u^2 / 2) / Phi(u), u = gap / sigma_X [1/s];
-    0 beyond :data:`U_MAX`."""
+    0 beyond :data:`U_MAX`.
+
+    The estimator's kernel calls it too; numba's on-disk cache of a caller in
+    another file does not see an edit here (nor of :data:`U_MAX`): after one,
+    delete the ``*.nbi``/``*.nbc`` files in ``pounding/__pycache__``."""
     u = gap / sigma_x
     if u >= U_MAX:
         return 0.0
@@ -156,17 +160,16 @@ def _solve_dashpots(gaps, sigma_x, sigma_v, frequency, restitution, dissipation,
     c |G| below 1e-10, the impacts change nothing: c = 0.
 
     One row per gap: c, sigma_X ratio, sigma_V ratio, bandwidth, rho; c = -1
-    marks a gap where no fixed point was found (raised by the caller). Along a
-    curve of gaps the previous gap's c is the first trial (neighbours differ little)."""
+    marks a gap where no fixed point was found (raised by the caller). Each gap
+    is solved on its own, so a curve's values do not depend on its other gaps."""
     out = np.zeros((gaps.size, 5))
-    previous = 0.0
     for k in range(gaps.size):
         gap = gaps[k]
         g_low, rx, rv, s0, s1, s2, rho, rate = _mismatch(0.0, gap, sigma_x, sigma_v, frequency, restitution, spectra, modes)
         scale = dissipation * rate
         c = 0.0
         if g_low > 1e-12 and scale * feedback_max > 1e-10:
-            low, high = 0.0, previous / scale if previous > 0.0 else 1.0
+            low, high = 0.0, 1.0
             g_high = _mismatch(high * scale, gap, sigma_x, sigma_v, frequency, restitution, spectra, modes)[0]
             doublings = 0
             while g_high >= 0.0 and doublings < 60:
@@ -181,7 +184,7 @@ def _solve_dashpots(gaps, sigma_x, sigma_v, frequency, restitution, dissipation,
             converged = False
             x = low
             for _ in range(200):
-                x = (low * g_high - high * g_low) / (g_high - g_low)  # g_low > 0 > g_high
+                x = (low * g_high - high * g_low) / (g_high - g_low)  # g_low >= 0 > g_high
                 g_x, rx, rv, s0, s1, s2, rho, rate = _mismatch(x * scale, gap, sigma_x, sigma_v, frequency, restitution, spectra, modes)
                 if abs(g_x) <= _TOLERANCE or high - low <= _TOLERANCE * high:
                     converged = True
@@ -200,7 +203,6 @@ def _solve_dashpots(gaps, sigma_x, sigma_v, frequency, restitution, dissipation,
                 out[k, 0] = -1.0
                 continue
             c = x * scale
-        previous = c
         out[k, 0] = c
         out[k, 1] = rx
         out[k, 2] = rv
