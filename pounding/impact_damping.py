@@ -54,9 +54,10 @@ from .response import (
     relative_displacement_psd,
     response_with_residual,
     spectral_grid,
+    vanmarcke_bandwidth,
 )
 
-__all__ = ["U_MAX", "DampedMotion", "ImpactDamping", "impact_damping", "time_cut_rate", "vanmarcke_bandwidth"]
+__all__ = ["U_MAX", "DampedMotion", "ImpactDamping", "impact_damping", "time_cut_rate"]
 
 U_MAX = 10.0
 """gap / sigma_X (and v / sigma_V) beyond which there is no impact (exp(-50))."""
@@ -99,12 +100,6 @@ def _jump_memory(rate, frequency, rates, x_modes, v_modes):
 
 
 @njit(cache=True)
-def vanmarcke_bandwidth(lambda_0, lambda_1, lambda_2):
-    """Vanmarcke's q = sqrt(1 - lambda_1^2 / (lambda_0 lambda_2)) from spectral moments [-]."""
-    return math.sqrt(max(1.0 - lambda_1 * lambda_1 / (lambda_0 * lambda_2), 0.0))
-
-
-@njit(cache=True)
 def time_cut_rate(gap, sigma_x, sigma_v):
     """Rice's rate of upcrossings of the gap per unit of time spent below it,
     (sigma_V / (2 pi sigma_X)) exp(-u^2 / 2) / Phi(u), u = gap / sigma_X [1/s];
@@ -137,19 +132,24 @@ def _spectral_sums(c, weights, psd, psd_omega, psd_omega2, feedback_re, feedback
 
 
 @njit(cache=True)
+def _with_dashpot(c, spectra):
+    """sigma_X and sigma_V ratios to the free motion's and the bandwidth of X under a dashpot c."""
+    weights, psd, psd_omega, psd_omega2, feedback_re, feedback_im, free0, free2 = spectra
+    s0, s1, s2 = _spectral_sums(c, weights, psd, psd_omega, psd_omega2, feedback_re, feedback_im)
+    return math.sqrt(s0 / free0), math.sqrt(s2 / free2), vanmarcke_bandwidth(s0, s1, s2)
+
+
+@njit(cache=True)
 def _mismatch(c, gap, sigma_x, sigma_v, frequency, restitution, spectra, modes):
     """g(c) = sigma_V(c)^2 / sigma_V(0)^2 - R(c): the damped motion's velocity
     variance against the energy its impacts leave it, R = (1 - rho) / (1 - rho e^2);
-    also the sigma ratios, the spectral sums, rho and the impact rate."""
-    weights, psd, psd_omega, psd_omega2, feedback_re, feedback_im, free0, free2 = spectra
+    also the sigma ratios, the bandwidth, rho and the impact rate."""
     rates, x_modes, v_modes = modes
-    s0, s1, s2 = _spectral_sums(c, weights, psd, psd_omega, psd_omega2, feedback_re, feedback_im)
-    ratio_x = math.sqrt(s0 / free0)
-    ratio_v = math.sqrt(s2 / free2)
+    ratio_x, ratio_v, bandwidth = _with_dashpot(c, spectra)
     rate = time_cut_rate(gap, sigma_x * ratio_x, sigma_v * ratio_v)
     rho = _jump_memory(rate, frequency, rates, x_modes, v_modes) if rate > 0.0 else 0.0
     left = (1.0 - rho) / (1.0 - rho * restitution * restitution)
-    return ratio_v * ratio_v - left, ratio_x, ratio_v, s0, s1, s2, rho, rate
+    return ratio_v * ratio_v - left, ratio_x, ratio_v, bandwidth, rho, rate
 
 
 @njit(cache=True)
@@ -165,7 +165,7 @@ def _solve_dashpots(gaps, sigma_x, sigma_v, frequency, restitution, dissipation,
     out = np.zeros((gaps.size, 5))
     for k in range(gaps.size):
         gap = gaps[k]
-        g_low, rx, rv, s0, s1, s2, rho, rate = _mismatch(0.0, gap, sigma_x, sigma_v, frequency, restitution, spectra, modes)
+        g_low, rx, rv, q, rho, rate = _mismatch(0.0, gap, sigma_x, sigma_v, frequency, restitution, spectra, modes)
         scale = dissipation * rate
         c = 0.0
         if g_low > 1e-12 and scale * feedback_max > 1e-10:
@@ -185,7 +185,7 @@ def _solve_dashpots(gaps, sigma_x, sigma_v, frequency, restitution, dissipation,
             x = low
             for _ in range(200):
                 x = (low * g_high - high * g_low) / (g_high - g_low)  # g_low >= 0 > g_high
-                g_x, rx, rv, s0, s1, s2, rho, rate = _mismatch(x * scale, gap, sigma_x, sigma_v, frequency, restitution, spectra, modes)
+                g_x, rx, rv, q, rho, rate = _mismatch(x * scale, gap, sigma_x, sigma_v, frequency, restitution, spectra, modes)
                 if abs(g_x) <= _TOLERANCE or high - low <= _TOLERANCE * high:
                     converged = True
                     break
@@ -206,7 +206,7 @@ def _solve_dashpots(gaps, sigma_x, sigma_v, frequency, restitution, dissipation,
         out[k, 0] = c
         out[k, 1] = rx
         out[k, 2] = rv
-        out[k, 3] = vanmarcke_bandwidth(s0, s1, s2)
+        out[k, 3] = q
         out[k, 4] = rho
     return out
 
@@ -248,9 +248,7 @@ class ImpactDamping:
     def with_dashpot(self, dashpot: float) -> tuple[float, float, float]:
         """sigma_X and sigma_V of the motion with a dashpot [N s/m] between the
         contact floors over the free motion's, and its bandwidth q [-]."""
-        weights, psd, psd_omega, psd_omega2, feedback_re, feedback_im, free0, free2 = self._spectra
-        s0, s1, s2 = _spectral_sums(float(dashpot), weights, psd, psd_omega, psd_omega2, feedback_re, feedback_im)
-        return math.sqrt(s0 / free0), math.sqrt(s2 / free2), vanmarcke_bandwidth(s0, s1, s2)
+        return tuple(float(value) for value in _with_dashpot(float(dashpot), self._spectra))
 
     def damped(self, gaps) -> DampedMotion:
         """The damped motion at each gap [m]."""

@@ -22,6 +22,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 from scipy.integrate import quad_vec
 
 from .linearization import (
@@ -46,6 +47,7 @@ __all__ = [
     "response_frequency",
     "response_lyapunov",
     "response_with_residual",
+    "vanmarcke_bandwidth",
 ]
 
 OUTPUTS = ("x1", "x2", "v1", "v2", "a1", "a2")
@@ -478,8 +480,13 @@ def spectral_moments_relative_displacement(case, linearized=None, orders=(0, 1, 
     return np.array([np.trapezoid(omega**k * spectrum, omega) for k in orders])
 
 
+@njit(cache=True)
+def vanmarcke_bandwidth(lambda_0, lambda_1, lambda_2):
+    """Vanmarcke's q = sqrt(1 - lambda_1^2 / (lambda_0 lambda_2)) from one-sided spectral moments [-]."""
+    return math.sqrt(max(1.0 - lambda_1 * lambda_1 / (lambda_0 * lambda_2), 0.0))
+
+
 def bandwidth_relative_displacement(case, linearized=None) -> float:
     """Vanmarcke's bandwidth q = sqrt(1 - lambda_1^2 / (lambda_0 lambda_2)) of
     X [-]: near 0 for a narrow-band (one-frequency) motion, up to 1 for a broad one."""
-    lam0, lam1, lam2 = spectral_moments_relative_displacement(case, linearized)
-    return float(math.sqrt(max(1.0 - lam1**2 / (lam0 * lam2), 0.0)))
+    return float(vanmarcke_bandwidth(*spectral_moments_relative_displacement(case, linearized)))
