@@ -327,15 +327,19 @@ def _intensity_kernel(gaps, velocities, sigma_x, sigma_v, weights, clumping, sca
             factor = weights[t] * impacts.time_cut_rate(gaps[i], sx, sv)
             if factor == 0.0:
                 continue
+            level = math.exp(-0.5 * u * u)
             for j in range(velocities.size):
                 rho = velocities[j] / sv
                 if rho >= _U_MAX:
                     continue
-                r = math.sqrt(u * u + rho * rho)
+                speed = math.exp(-0.5 * rho * rho)
+                r2 = u * u + rho * rho
                 clumps = 1.0
-                if r > 1e-9:
-                    clumps = min(1.0, -math.expm1(-clumping[i] * r) / -math.expm1(-0.5 * r * r))
-                out[i, j] += factor * math.exp(-0.5 * rho * rho) * clumps
+                if r2 > 1e-18:
+                    # 1 - exp(-r^2 / 2) from the two factors already at hand, but by expm1 where it is small.
+                    envelope_tail = 1.0 - level * speed if r2 > 1e-2 else -math.expm1(-0.5 * r2)
+                    clumps = min(1.0, -math.expm1(-clumping[i] * math.sqrt(r2)) / envelope_tail)
+                out[i, j] += factor * speed * clumps
     return out
 
 
@@ -429,7 +433,8 @@ def _crossings(
         response.sigma_relative_velocity / linear.sigma_relative_velocity
     ) ** 2
     weights = np.concatenate([[0.5 * (times[1] - times[0])], 0.5 * (times[2:] - times[:-2]), [0.5 * (times[-1] - times[-2])]])
-    alive = (variance_x > 1e-30) & (variance_v > 1e-30)
+    # At the onset the buildings are at rest: their variances are rounding noise, whose ratio is no rate.
+    alive = (variance_x > 1e-12 * variance_x.max()) & (variance_v > 1e-12 * variance_v.max())
     if damped:
         damping = impacts.impact_damping(case, linearized, model, response)
         bandwidth = damping.bandwidth
@@ -530,30 +535,35 @@ def _required_gap(crossings: _Crossings, target_probability: float) -> float:
     A design value, so on the safe side of the best-estimate probability:
     P(pounding) <= E[crossings], while Vanmarcke's clump factor (kept for
     ``pounding_probability``) was measured optimistic for a pair of close
-    periods (docs/estimator.md). Bracketed on a grid, interpolated in log
-    Lambda (smooth, nearly quadratic in the gap), then refined by a few
-    bisections."""
-    allowed = -math.log(target_probability)
-    gaps = np.linspace(0.0, _U_MAX * crossings.sigma_x.max(), 257)
-    impacts = crossings.intensity(gaps, np.zeros(1), clumps=False)[:, 0]
-    if impacts[0] <= allowed:
+    periods (docs/estimator.md)."""
+    return _required_gap_kernel(-math.log(target_probability), crossings.sigma_x, crossings.sigma_v, crossings.weights)
+
+
+@njit(cache=True)
+def _required_gap_kernel(allowed, sigma_x, sigma_v, weights):
+    """Bisection for Lambda(gap, 0) = allowed, Lambda(gap, 0) = sum_t w_t nu_t(gap)
+    the time-cut rate summed over the history: it falls with the gap (as
+    exp(-u^2 / 2) / Phi(u)), so the root is unique. To 1e-10 of the gap."""
+    low, high = 0.0, _U_MAX * sigma_x.max()
+    if _free_approaches(low, sigma_x, sigma_v, weights) <= allowed:
         return 0.0
-    above = np.flatnonzero(impacts > allowed)[-1]
-    low, high = gaps[above], gaps[above + 1]
-    if impacts[above + 1] > 0.0:
-        log_low, log_high = math.log(impacts[above]), math.log(impacts[above + 1])
-        guess = low + (high - low) * (log_low - math.log(allowed)) / (log_low - log_high)
-        window = 1e-3 * (high - low)
-        trial = crossings.intensity(np.array([guess - window, guess + window]), np.zeros(1), clumps=False)[:, 0]
-        if trial[0] > allowed >= trial[1]:
-            low, high = guess - window, guess + window
-    for _ in range(12):
+    while high - low > 1e-10 * high:
         middle = 0.5 * (low + high)
-        if crossings.intensity(np.array([middle]), np.zeros(1), clumps=False)[0, 0] > allowed:
+        if _free_approaches(middle, sigma_x, sigma_v, weights) > allowed:
             low = middle
         else:
             high = middle
-    return float(high)
+    return high
+
+
+@njit(cache=True)
+def _free_approaches(gap, sigma_x, sigma_v, weights):
+    """Lambda(gap, 0) with every crossing counted: what the intensity kernel
+    gives at v = 0 without clumps (its factor c(r) is then 1)."""
+    total = 0.0
+    for t in range(sigma_x.size):
+        total += weights[t] * impacts.time_cut_rate(gap, sigma_x[t], sigma_v[t])
+    return total
 
 
 def _separation_rules(case: Case, response: ContactResponse) -> dict:

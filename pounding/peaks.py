@@ -192,8 +192,9 @@ def _envelope_values(envelope, times):
     return np.ones_like(times) if envelope is None else np.asarray(envelope(times), dtype=float)
 
 
-def time_varying_covariance(model: StateSpace, envelope, times, modulation: str = "bedrock", rtol: float = 1e-8):
-    """Covariance P(t) of a linear model under modulated excitation, from rest.
+def time_varying_covariance(model: StateSpace, envelope, times, modulation: str = "bedrock", rtol: float = 1e-8, outputs=None):
+    """Covariance P(t) of a linear model under modulated excitation, from rest
+    (or C P(t) C^T of outputs C).
 
     ``modulation = "bedrock"`` (default): the white noise driving the ground
     filter is modulated, dP/dt = A P + P A^T + 2 pi G0 A(t)^2 b b^T. Stepped
@@ -227,23 +228,29 @@ def time_varying_covariance(model: StateSpace, envelope, times, modulation: str 
         ``"bedrock"`` or ``"ground"``.
     rtol : float
         Relative tolerance of the ``"ground"`` integration.
+    outputs : ndarray, (k, n), optional
+        Rows C over the state: return the outputs' covariance C P(t) C^T (for a
+        stationary motion switched on, computed for the outputs alone).
 
     Returns
     -------
-    ndarray, (n_times, n, n)
+    ndarray, (n_times, n, n), or (n_times, k, k) with ``outputs``
     """
     times = np.asarray(times, dtype=float)
     if times.ndim != 1 or times.size < 1 or np.any(np.diff(times) <= 0.0):
         raise CaseError("times", "must be a one-dimensional increasing array")
     A = model.matrix
     values = _envelope_values(envelope, times)
+    rows = np.eye(model.size) if outputs is None else np.atleast_2d(np.asarray(outputs, dtype=float))
     if envelope is None and modulation == "ground":
-        return _switched_on(model, times)
+        return _switched_on(model, times, rows)
     if modulation == "bedrock":
-        return _bedrock(A, model.covariance(), times, values**2)
-    if modulation == "ground":
-        return _ground(model, envelope, times, rtol)
-    raise ValueError(f"modulation must be 'bedrock' or 'ground', got {modulation!r}")
+        history = _bedrock(A, model.covariance(), times, values**2)
+    elif modulation == "ground":
+        history = _ground(model, envelope, times, rtol)
+    else:
+        raise ValueError(f"modulation must be 'bedrock' or 'ground', got {modulation!r}")
+    return history if outputs is None else rows @ history @ rows.T
 
 
 def _bedrock(A, stationary, times, forcing):
@@ -265,27 +272,34 @@ def _bedrock(A, stationary, times, forcing):
     return out
 
 
-def _switched_on(model: StateSpace, times):
-    """A stationary ground motion acting from ``times[0]`` on buildings at rest
-    (the filter already stationary): a time-invariant system, so
-    P(t) = P_s + exp(A t) (P_0 - P_s) exp(A^T t).
+def _switched_on(model: StateSpace, times, rows):
+    """C P(t) C^T for a stationary ground motion acting from ``times[0]`` on
+    buildings at rest (the filter already stationary): a time-invariant
+    system, so P(t) = P_s + exp(A t) (P_0 - P_s) exp(A^T t).
 
     With A = V diag(l) V^-1 this is V (D * exp((l_i + l_j) t)) V^T with
-    D = V^-1 (P_0 - P_s) V^-T: every instant at once. An ill-conditioned
-    eigenvector basis (a nearly defective A) falls back to stepping with one
-    propagator per distinct step."""
+    D = V^-1 (P_0 - P_s) V^-T: every instant at once, and only the rows C
+    carried through (C V). An ill-conditioned eigenvector basis (a nearly
+    defective A) falls back to stepping with one propagator per distinct step."""
     A, stationary = model.matrix, model.covariance()
     f = model.filter_states
     deviation = -stationary.copy()
     deviation[f, f] = 0.0  # the filter starts in its stationary state
     elapsed = times - times[0]
-    values, vectors = np.linalg.eig(A)
-    if np.linalg.cond(vectors) < 1e6:
-        inverse = np.linalg.inv(vectors)
+    values, vectors, inverse, condition = model.modes()
+    if condition < 1e6:
         modal = inverse @ deviation @ inverse.T
-        growth = np.exp(np.add.outer(values, values)[None, :, :] * elapsed[:, None, None])
-        return stationary + (vectors @ (modal * growth) @ vectors.T).real
-    return _stepped(A, stationary, deviation, times)
+        projected = rows @ vectors
+        k, n = projected.shape
+        # (C V)_ai D_ij (C V)_bj exp((l_i + l_j) t), summed over i, j as one product for every instant.
+        coefficients = np.einsum("ai,ij,bj->abij", projected, modal, projected).reshape(k * k, n * n)
+        decay = np.exp(np.outer(values, elapsed))  # exp(l_i t); exp((l_i + l_j) t) is a product of two
+        growth = (decay[:, None, :] * decay[None, :, :]).reshape(n * n, elapsed.size)
+        transient = (coefficients @ growth).real.T.reshape(elapsed.size, k, k)
+        out = rows @ stationary @ rows.T + transient
+        out[elapsed == 0.0] = rows @ (stationary + deviation) @ rows.T  # exactly at rest, not P_s less itself
+        return out
+    return rows @ _stepped(A, stationary, deviation, times) @ rows.T
 
 
 def _stepped(A, stationary, deviation, times):

@@ -442,8 +442,7 @@ def contact_covariance_history(case, linearized=None, times=None, modulation: st
     if model is None:
         model = pair_state_space(case, _linearized(case, linearized))
     outputs = contact_output_matrix(case, model)
-    history = time_varying_covariance(model, case.excitation.envelope, times, modulation=modulation)
-    return outputs @ history @ outputs.T
+    return time_varying_covariance(model, case.excitation.envelope, times, modulation=modulation, outputs=outputs)
 
 
 _SPECTRAL_GRID = np.geomspace(1e-4, 2.0e3, 2001)

@@ -129,6 +129,21 @@ class StateSpace:
         (solved once per model; read-only)."""
         return self._stationary_covariance
 
+    def modes(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+        """Eigenvalues l, eigenvectors V and V^-1 of the state matrix, and the
+        condition number of V (1-norm; large for a nearly defective matrix)
+        (computed once per model; read-only)."""
+        return self._modes
+
+    @cached_property
+    def _modes(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+        values, vectors = np.linalg.eig(self.matrix)
+        inverse = np.linalg.inv(vectors)
+        condition = float(np.linalg.norm(vectors, 1) * np.linalg.norm(inverse, 1))
+        for array in (values, vectors, inverse):
+            array.setflags(write=False)
+        return values, vectors, inverse, condition
+
     @cached_property
     def _stationary_covariance(self) -> np.ndarray:
         covariance = lyapunov_covariance(self.matrix, self.noise_covariance)

@@ -302,8 +302,7 @@ def _lag_grid(values: np.ndarray, modal_weights: np.ndarray) -> tuple[float, int
 def _modal_correlation(model: StateSpace, linearized):
     """:func:`residual_correlation`, with the eigenvalues and eigenvectors of the state matrix."""
     storeys = _storeys(model, linearized)
-    values, vectors = np.linalg.eig(model.matrix)
-    inverse = np.linalg.inv(vectors)
+    values, vectors, inverse, _ = model.modes()
     covariance = model.covariance()
     # E[y_j(t) y_k(t + tau)^T] = R_j P exp(A^T tau) R_k^T = (R_j P V^-T) diag(exp(l tau)) (V^T R_k^T),
     # whitened: M = L_j^-1 (...) L_k^-T.
