@@ -21,6 +21,9 @@ derivation gives for crossings of d alone.
     python3 docs/clump_models.py --grid    # the estimator's grid, about 30 min
     python3 docs/clump_models.py --free-grid   # the grid's free motion, about 3 min
     python3 docs/clump_models.py --draw 2026   # a random draw of docs/out_of_sample.py, by regime, about 45 min
+    python3 docs/clump_models.py --damped 2026 2027 2028   # the conditional count with the impacts' damping,
+                                               # the grid and the draws, by regime and by kind of building,
+                                               # about 10 min per draw
 """
 
 from __future__ import annotations
@@ -36,6 +39,7 @@ from scipy.special import erfc
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
+from impact_damping import ORDER, measured_cases  # noqa: E402  (beside this script)
 from error_decomposition import ONE_SIDED, contact_motion, rice_expected_power, upcrossing_speeds, vanmarcke_clumps  # noqa: E402  (beside this script)
 
 import pounding.estimator as estimator  # noqa: E402
@@ -277,8 +281,56 @@ def free_grid_table() -> None:
               + " | ".join(f"{c:+.1%}" for c in cells) + " |", flush=True)
 
 
+def damped_conditional_table(seeds) -> None:
+    """The estimator, and the estimator with the conditional count in place of Vanmarcke's factor
+    for the largest approach (its impacts' damping kept: the damped sigmas scale the count; the
+    window's law is the free pair's), against Monte Carlo on the grid and ``seeds``' draws, by
+    the regime the estimate states and by kind of building (elastic: Gaussian motion)."""
+    original = estimator._Crossings.impacting_intensity
+
+    def conditional(case):
+        lags = pair_lags(case)
+
+        def intensity(self, gaps, velocities, motion):
+            gaps = np.atleast_1d(gaps).astype(float)
+            out = np.zeros((gaps.size, np.size(velocities)))
+            for i, gap in enumerate(gaps):
+                damped = dataclasses.replace(self, sigma_x=self.sigma_x * motion.ratio_displacement[i],
+                                             sigma_v=self.sigma_v * motion.ratio_velocity[i])
+                out[i] = conditional_intensity(damped, lags, gap, velocities, "time cut")[0]
+            return out
+
+        return intensity
+
+    def variant(case):
+        estimator._Crossings.impacting_intensity = conditional(case)
+        try:
+            return estimator.estimate(case)
+        finally:
+            estimator._Crossings.impacting_intensity = original
+
+    sources = {"grid": accuracy_cases(), **{f"draw {seed}": random_cases(seed) for seed in seeds}}
+    rows = []
+    for source, cases in sources.items():
+        for regime, kind, errors in measured_cases(cases, variant):
+            rows.append((source, regime, kind, *errors))
+    print("| regime | source | Vanmarcke (the estimator) | conditional count |")
+    print("|---|---|---|---|")
+    for group in [(regime,) for regime in ORDER] + [("elastic",), ("yielding",)]:
+        for source in ("grid and draws", *sources):
+            chosen = [r for r in rows if group[0] in (r[1], r[2]) and (source == "grid and draws" or r[0] == source)]
+            if chosen:
+                cells = []
+                for column in (3, 4):
+                    e = np.array([r[column] for r in chosen])
+                    cells.append(f"{int(np.sum(np.abs(e) <= 0.10))} of {e.size}, median {np.median(e):+.1%}, {e.min():+.0%} to {e.max():+.0%}")
+                print(f"| {group[0]} | {source} | " + " | ".join(cells) + " |", flush=True)
+
+
 if __name__ == "__main__":
-    if "--draw" in sys.argv[1:]:
+    if "--damped" in sys.argv[1:]:
+        damped_conditional_table([int(a) for a in sys.argv[sys.argv.index("--damped") + 1:]])
+    elif "--draw" in sys.argv[1:]:
         grid_table(random_cases(int(sys.argv[sys.argv.index("--draw") + 1])), by_regime=True)
     elif "--grid" in sys.argv[1:]:
         grid_table()
