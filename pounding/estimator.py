@@ -543,11 +543,14 @@ def _required_gap(crossings: _Crossings, target_probability: float) -> float:
 def _required_gap_kernel(allowed, sigma_x, sigma_v, weights):
     """Bisection for Lambda(gap, 0) = allowed, Lambda(gap, 0) = sum_t w_t nu_t(gap)
     the time-cut rate summed over the history: it falls with the gap (as
-    exp(-u^2 / 2) / Phi(u)), so the root is unique. To 1e-10 of the gap."""
+    exp(-u^2 / 2) / Phi(u)), so it crosses ``allowed`` once; the gap returned
+    is on the safe side of the crossing, to 1e-10 of it."""
     low, high = 0.0, _U_MAX * sigma_x.max()
     if _free_approaches(low, sigma_x, sigma_v, weights) <= allowed:
         return 0.0
-    while high - low > 1e-10 * high:
+    for _ in range(200):  # 1e-10 takes about 34 halvings; the cap ends it where rounding stops them shrinking
+        if high - low <= 1e-10 * high:
+            break
         middle = 0.5 * (low + high)
         if _free_approaches(middle, sigma_x, sigma_v, weights) > allowed:
             low = middle

@@ -241,7 +241,7 @@ def time_varying_covariance(model: StateSpace, envelope, times, modulation: str 
         raise CaseError("times", "must be a one-dimensional increasing array")
     A = model.matrix
     values = _envelope_values(envelope, times)
-    rows = np.eye(model.size) if outputs is None else np.atleast_2d(np.asarray(outputs, dtype=float))
+    rows = None if outputs is None else np.atleast_2d(np.asarray(outputs, dtype=float))
     if envelope is None and modulation == "ground":
         return _switched_on(model, times, rows)
     if modulation == "bedrock":
@@ -250,7 +250,7 @@ def time_varying_covariance(model: StateSpace, envelope, times, modulation: str 
         history = _ground(model, envelope, times, rtol)
     else:
         raise ValueError(f"modulation must be 'bedrock' or 'ground', got {modulation!r}")
-    return history if outputs is None else rows @ history @ rows.T
+    return history if rows is None else rows @ history @ rows.T
 
 
 def _bedrock(A, stationary, times, forcing):
@@ -287,19 +287,24 @@ def _switched_on(model: StateSpace, times, rows):
     deviation[f, f] = 0.0  # the filter starts in its stationary state
     elapsed = times - times[0]
     values, vectors, inverse, condition = model.modes()
-    if condition < 1e6:
-        modal = inverse @ deviation @ inverse.T
-        projected = rows @ vectors
-        k, n = projected.shape
-        # (C V)_ai D_ij (C V)_bj exp((l_i + l_j) t), summed over i, j as one product for every instant.
-        coefficients = np.einsum("ai,ij,bj->abij", projected, modal, projected).reshape(k * k, n * n)
-        decay = np.exp(np.outer(values, elapsed))  # exp(l_i t); exp((l_i + l_j) t) is a product of two
-        growth = (decay[:, None, :] * decay[None, :, :]).reshape(n * n, elapsed.size)
-        transient = (coefficients @ growth).real.T.reshape(elapsed.size, k, k)
-        out = rows @ stationary @ rows.T + transient
-        out[elapsed == 0.0] = rows @ (stationary + deviation) @ rows.T  # exactly at rest, not P_s less itself
+    if condition >= 1e6:
+        history = _stepped(A, stationary, deviation, times)
+        return history if rows is None else rows @ history @ rows.T
+    modal = inverse @ deviation @ inverse.T
+    decay = np.exp(np.outer(values, elapsed))  # exp(l_i t); exp((l_i + l_j) t) is a product of two
+    if rows is None:  # the whole state: n^2 numbers per instant
+        growth = decay.T[:, :, None] * decay.T[:, None, :]
+        out = stationary + (vectors @ (modal * growth) @ vectors.T).real
+        out[elapsed == 0.0] = stationary + deviation  # exactly at rest, not P_s less itself
         return out
-    return rows @ _stepped(A, stationary, deviation, times) @ rows.T
+    projected = rows @ vectors
+    k, n = projected.shape
+    # (C V)_ai D_ij (C V)_bj exp((l_i + l_j) t), summed over i, j as one product for every instant (k^2 n^2 numbers).
+    coefficients = np.einsum("ai,ij,bj->abij", projected, modal, projected).reshape(k * k, n * n)
+    growth = (decay[:, None, :] * decay[None, :, :]).reshape(n * n, elapsed.size)
+    out = rows @ stationary @ rows.T + (coefficients @ growth).real.T.reshape(elapsed.size, k, k)
+    out[elapsed == 0.0] = rows @ (stationary + deviation) @ rows.T
+    return out
 
 
 def _stepped(A, stationary, deviation, times):
