@@ -357,7 +357,7 @@ def _accuracy(args) -> int:
 
 
 def _validate(args) -> int:
-    from .validation import ASSUMPTIONS, validate
+    from .validation import ASSUMPTIONS, READINGS_MEASURED, validate
 
     if args.grid:
         return _accuracy(args)
@@ -370,7 +370,7 @@ def _validate(args) -> int:
             bar.close()
     if args.json:
         print(json.dumps({"records": args.records, "seed": args.seed, "rows": [row.to_dict() for row in rows],
-                          "assumptions": list(ASSUMPTIONS), "units": {"force": "N"}}))
+                          "assumptions": list(ASSUMPTIONS), "readings_measured": READINGS_MEASURED, "units": {"force": "N"}}))
         return 0
 
     def mn(value):
@@ -388,6 +388,7 @@ def _validate(args) -> int:
     print("\nAssumptions where the paper is silent or misprinted:")
     for line in ASSUMPTIONS:
         print(f"  - {line}")
+    print(f"\nThe two readings of the excitation: {READINGS_MEASURED}")
     return 0
 
 

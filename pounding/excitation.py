@@ -47,7 +47,8 @@ class KanaiTajimi:
     omega_g : float
         Ground (filter) frequency [rad/s].
     xi_g : float
-        Ground damping ratio [-].
+        Ground damping ratio [-]. (The text after Eq. 7 swaps the two names:
+        omega_g = 27.02 rad/s, xi_g = 0.34; NOTES.md 2.)
     """
 
     G0: float

@@ -4,7 +4,9 @@ A building is a chain of storeys from the ground up. Storey ``i`` joins floor
 ``i-1`` (the ground for the first) to floor ``i``, which carries the storey's
 mass. Its restoring force is q = alpha k u + (1 - alpha) k z (Eq. 36) on the
 storey drift u, with the hysteretic displacement z of Eq. 2. One storey is the
-paper's SDOF building (Eq. 1); two storeys the unequal-height model (Eq. 31).
+paper's SDOF building (Eq. 1); two storeys the unequal-height model (Eq. 31,
+whose first line is garbled as printed: the drifts are the coordinates, as
+Eq. 32 and 36-39 write them; NOTES.md 9).
 """
 
 from __future__ import annotations

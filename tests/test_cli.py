@@ -40,6 +40,55 @@ def test_simulate_json_matches_the_library():
     assert data["closed_form"]["accuracy_regime"] == closed_form.accuracy_regime
 
 
+@pytest.mark.parametrize("preset", ["section5-T2-0.4", "section5-T2-0.4-nonstationary"])
+def test_estimate_json_is_the_documented_contract_in_si(preset):
+    """The keys the issue and README promise, each the library's number in SI;
+    a modulated case adds Eq. 29's sigma_V,eq to ``paper``."""
+    out = run("estimate", preset, "--json", "--target-probability", "0.9")
+    assert out.returncode == 0, out.stderr
+    data = json.loads(out.stdout)
+    expected = estimate(load_case(preset), target_probability=0.9)
+    for key in ("force_expected", "relative_velocity_expected", "sigma_relative_velocity", "sigma_relative_displacement",
+                "impacts_expected", "pounding_probability", "required_gap"):
+        assert data[key] == pytest.approx(getattr(expected, key), rel=1e-12), key
+    for key in ("force_expected", "relative_velocity_expected", "crossing_rate", "duration_effective"):
+        assert data["paper"][key] == pytest.approx(getattr(expected.paper, key), rel=1e-12), key
+    assert data["units"]["force"] == "N" and data["units"]["length"] == "m"
+    stationary = load_case(preset).excitation.stationary
+    assert ("sigma_relative_velocity_equivalent" in data["paper"]) is not stationary
+    if not stationary:
+        equivalent = data["paper"]["sigma_relative_velocity_equivalent"]
+        assert equivalent == pytest.approx(expected.paper.sigma_relative_velocity_equivalent, rel=1e-12)
+        assert equivalent < data["sigma_relative_velocity"]  # the envelope only lowers sigma_inf
+
+
+def test_validate_prints_the_papers_tables_beside_both_estimators_and_its_assumptions():
+    """Tables 1, 2, 5, 6 under both readings of the excitation: the paper's two
+    columns as printed in it, this project's Monte Carlo and both estimators,
+    each the library's number, then every assumption and what the readings gave."""
+    from pounding.validation import ASSUMPTIONS, PAPER_TABLES, READINGS, READINGS_MEASURED
+
+    out = run("validate", "--records", "2", "--seed", "4")
+    assert out.returncode == 0, out.stderr
+    lines = out.stdout.splitlines()
+    for table, (pattern, values) in PAPER_TABLES.items():
+        for reading, suffix in READINGS.items():
+            start = lines.index(f"{table}, excitation {reading}")
+            for offset, (period, (exact, proposed)) in enumerate(values.items(), start=2):
+                numbers = [float(x) for x in re.findall(r"\d+\.\d+", lines[start + offset])]
+                assert numbers[0:2] == [1.2, period]
+                assert numbers[2:4] == pytest.approx([exact, proposed], abs=5e-4)
+                case = load_case(pattern.format(period) + suffix)
+                closed_form = estimate(case)
+                assert numbers[-2:] == pytest.approx([closed_form.paper.force_expected / 1e6, closed_form.force_expected / 1e6], abs=5e-4)
+    study = simulate(load_case("section6-T2-0.8-nonstationary"), records=2, seed=4)
+    row = lines[lines.index("Table 6, excitation as printed") + 4]
+    assert float(row.split("|")[1].split()[0]) == pytest.approx(study.force_max_mean / 1e6, abs=5e-4)
+    for assumption in ASSUMPTIONS:
+        assert f"  - {assumption}" in lines
+    assert READINGS_MEASURED in out.stdout
+
+
 def test_simulate_table_puts_the_closed_form_beside_with_its_error():
     """The printed error is the printed force over the study's mean, and the error against the ends of the
     95 % CI brackets it; the force is the library's."""

@@ -53,6 +53,28 @@ def test_lyapunov_and_frequency_routes_agree(preset):
     np.testing.assert_allclose(frequency.covariance / scale, lyapunov.covariance / scale, atol=1e-7)
 
 
+@pytest.mark.parametrize("levels", [(1, 1), (3, 2), (1, 2), (3, 1)])
+def test_routes_agree_at_any_pair_of_contact_floors(levels):
+    """Three storeys beside two, contact at any floor of each: the state-space
+    outputs and the frequency route pick their floors by separate code, so an
+    indexing slip in either fails here."""
+    from pounding.validation import _mdof_case
+
+    case = _mdof_case()
+    case = dataclasses.replace(case, contact=dataclasses.replace(case.contact, levels=levels))
+    linearized = linearize_pair(case)
+    lyapunov, frequency = response_lyapunov(case, linearized), response_frequency(case, linearized)
+    for name in DERIVED:
+        np.testing.assert_allclose(getattr(frequency, name), getattr(lyapunov, name), rtol=1e-6, err_msg=name)
+    # The floor asked for, not another: each building's floors sway more the higher they are.
+    lowest = response_lyapunov(dataclasses.replace(case, contact=dataclasses.replace(case.contact, levels=(1, 1))), linearized)
+    for building, level in enumerate(levels):
+        if level > 1:
+            assert lyapunov.sigma_displacement[building] > 1.5 * lowest.sigma_displacement[building]
+        else:
+            assert lyapunov.sigma_displacement[building] == pytest.approx(lowest.sigma_displacement[building], rel=1e-12)
+
+
 def test_routes_agree_under_clough_penzien():
     case = _clough_penzien(pounding.load_case("section6-T2-0.4"))
     linearized = linearize_pair(case)
