@@ -55,11 +55,13 @@ from .errors import CaseError, check_probability
 from .excitation import CloughPenzien
 from . import impact_damping as impacts
 from .linearization import StateSpace, linearize_pair, pair_state_space
-from .peaks import davenport_peak_factor, envelope_variance, equivalent_stationary
+from .peaks import davenport_peak_factor, envelope_variance, equivalent_stationary, expected_absolute_peak
 from .response import (
     ContactResponse,
     bandwidth_relative_displacement,
     contact_covariance_history,
+    contact_floor_bandwidths,
+    contact_floor_frfs,
     response_lyapunov,
     response_with_residual,
 )
@@ -171,8 +173,10 @@ class Estimate:
         The dashpot between the contact floors that damps the relative motion
         alike [N s/m].
     separation_rules : dict
-        Gaps by the SRSS, ABS and DDC rules from the expected peak
-        displacements of the contact floors [m].
+        Gaps by the SRSS, ABS and DDC rules [m] from the expected peak |x| of
+        each contact floor (``peak_displacement`` [m]: the linearized floor from
+        rest with Vanmarcke's clumps, :func:`~pounding.peaks.expected_absolute_peak`)
+        and their stationary correlation (``displacement_correlation`` [-]).
     paper : PaperEstimate
     response : ContactResponse
         The linearized pair's stationary response at the contact floors, the
@@ -298,7 +302,8 @@ def paper_estimate(case: Case, linearized, response: ContactResponse, variance_m
     if contact.model == "linear":
         force = penetration = None
     else:
-        # Eq. 13-14: the Hertz peak for the separation velocity e * delta_dot_e (NOTES.md 10).
+        # Eq. 13-14: the Hertz peak for the separation velocity e * delta_dot_e (NOTES.md 10), with
+        # delta^1.5 as Eq. 3 and 14 have it (Eq. 12's delta^2 is a misprint, NOTES.md 1).
         separation = contact.restitution * velocity
         force = float(undamped_peak_force(contact, separation, case.reduced_mass))
         penetration = (force / contact.stiffness) ** (2.0 / 3.0)
@@ -405,20 +410,43 @@ class _Crossings:
         )
 
 
+@dataclass(frozen=True)
+class _PairStatistics:
+    """What an estimate needs of the free linearized pair, none of it depending
+    on the gap: its state space, stationary response (the paper's) and the
+    response with the residual's part (the recommended estimator's); the
+    contact outputs' covariance history from rest with the instants' trapezoid
+    weights [s]; the contact floors' FRFs; and the crossings history."""
+
+    model: StateSpace
+    linear: ContactResponse
+    response: ContactResponse
+    weights: np.ndarray
+    history: np.ndarray
+    floor_frfs: tuple
+    crossings: _Crossings
+
+
+def _pair_statistics(case: Case, linearized, impact_damping: bool = True) -> _PairStatistics:
+    model = pair_state_space(case, linearized)
+    linear = response_lyapunov(case, linearized, model)
+    _check_relative_motion(case, linear)
+    response = response_with_residual(case, linearized, model, linear)
+    weights, history = _history(case, linearized, model)
+    floor_frfs = contact_floor_frfs(case, linearized)
+    crossings = _crossings(case, linearized, model, response, linear, weights, history, floor_frfs, impact_damping)
+    return _PairStatistics(model, linear, response, weights, history, floor_frfs, crossings)
+
+
 _STATIONARY_STEP = 0.25  # [s] time grid of the build-up from rest (it takes seconds)
 _MODULATED_STEP = 0.25  # [s] time grid under an envelope (which varies over seconds)
 
 
-def _crossings(
-    case: Case, linearized, model: StateSpace, response: ContactResponse, linear: ContactResponse, damped: bool = True
-) -> _Crossings:
-    """sigma_X(t), sigma_V(t) from rest: the ground motion switched on at t = 0
-    on buildings at rest (stationary case), or modulated by the envelope.
-
-    The history is the linearized pair's; ``response`` (with the residual's
-    part, :func:`~pounding.response.response_with_residual`) scales each
-    variance by its stationary ratio to ``linear``'s. ``damped``: with the
-    impacts' damping of the motion between impacts (:mod:`pounding.impact_damping`)."""
+def _history(case: Case, linearized, model: StateSpace) -> tuple[np.ndarray, np.ndarray]:
+    """Trapezoid weights [s] of a time grid over the record and the contact
+    outputs' covariance on it (:data:`~pounding.response.OUTPUTS`, SI): the
+    ground motion switched on at t = 0 on buildings at rest (stationary case),
+    or modulated by the envelope."""
     excitation = case.excitation
     step = _STATIONARY_STEP if excitation.stationary else _MODULATED_STEP
     times = np.arange(0.0, excitation.duration + 1e-9, step)
@@ -426,33 +454,41 @@ def _crossings(
         times = np.append(times, excitation.duration)
     modulation = "ground" if excitation.stationary else "bedrock"
     history = contact_covariance_history(case, linearized, times, modulation=modulation, model=model)
+    weights = np.concatenate([[0.5 * (times[1] - times[0])], 0.5 * (times[2:] - times[:-2]), [0.5 * (times[-1] - times[-2])]])
+    return weights, history
+
+
+def _crossings(
+    case: Case,
+    linearized,
+    model: StateSpace,
+    response: ContactResponse,
+    linear: ContactResponse,
+    weights: np.ndarray,
+    history: np.ndarray,
+    floor_frfs: tuple,
+    damped: bool = True,
+) -> _Crossings:
+    """sigma_X(t), sigma_V(t) from the linearized pair's covariance ``history``
+    (:func:`_history`), each variance scaled by its stationary ratio of
+    ``response`` (with the residual's part, :func:`~pounding.response.response_with_residual`)
+    to ``linear``'s. ``damped``: with the impacts' damping of the motion
+    between impacts (:mod:`pounding.impact_damping`)."""
     variance_x = (history[:, 0, 0] + history[:, 1, 1] - 2 * history[:, 0, 1]) * (
         response.sigma_relative_displacement / linear.sigma_relative_displacement
     ) ** 2
     variance_v = (history[:, 2, 2] + history[:, 3, 3] - 2 * history[:, 2, 3]) * (
         response.sigma_relative_velocity / linear.sigma_relative_velocity
     ) ** 2
-    weights = np.concatenate([[0.5 * (times[1] - times[0])], 0.5 * (times[2:] - times[:-2]), [0.5 * (times[-1] - times[-2])]])
     # At the onset the buildings are at rest: their variances are rounding noise, whose ratio is no rate.
     alive = (variance_x > 1e-12 * variance_x.max()) & (variance_v > 1e-12 * variance_v.max())
     if damped:
-        damping = impacts.impact_damping(case, linearized, model, response)
+        damping = impacts.impact_damping(case, linearized, model, response, floor_frfs)
         bandwidth = damping.bandwidth
     else:
         damping, bandwidth = None, bandwidth_relative_displacement(case, linearized)
     frequency_squared = (response.sigma_relative_velocity / response.sigma_relative_displacement) ** 2
     return _merged(np.sqrt(variance_x[alive]), np.sqrt(variance_v[alive]), weights[alive], bandwidth, frequency_squared, damping)
-
-
-def _pair_statistics(case: Case, linearized, impact_damping: bool = True):
-    """The linearized pair's state space and stationary response (the paper's),
-    the response with the residual's part (the recommended estimator's), and
-    the crossings history built on them; none depends on the gap."""
-    model = pair_state_space(case, linearized)
-    linear = response_lyapunov(case, linearized, model)
-    _check_relative_motion(case, linear)
-    response = response_with_residual(case, linearized, model, linear)
-    return model, linear, response, _crossings(case, linearized, model, response, linear, impact_damping)
 
 
 def _check_relative_motion(case: Case, linear: ContactResponse) -> None:
@@ -569,22 +605,18 @@ def _free_approaches(gap, sigma_x, sigma_v, weights):
     return total
 
 
-def _separation_rules(case: Case, response: ContactResponse) -> dict:
-    """SRSS, ABS and DDC gaps from the expected peak |displacement| of each
-    contact floor (Davenport, with twice the upcrossing rate for |x|)."""
-    excitation = case.excitation
+def _separation_rules(case: Case, linearized, response: ContactResponse, weights, history, floor_frfs) -> dict:
+    """SRSS, ABS and DDC gaps [m] from the expected peak |displacement| of each
+    contact floor: the linearized floor's sigmas from rest (``history``, as
+    :func:`_history` gives it) with Vanmarcke's clumps
+    (:func:`~pounding.peaks.expected_absolute_peak`); DDC with the floors'
+    stationary correlation (``response``)."""
+    bandwidths = contact_floor_bandwidths(case, linearized, floor_frfs)
+    peaks = [
+        expected_absolute_peak(np.sqrt(history[:, floor, floor]), np.sqrt(history[:, 2 + floor, 2 + floor]), weights, q)
+        for floor, q in enumerate(bandwidths)
+    ]
     sigma_x = np.array(response.sigma_displacement)
-    sigma_v = np.array(response.sigma_velocity)
-    rate = 2.0 * sigma_v / (2.0 * math.pi * sigma_x)
-    if excitation.stationary:
-        peaks = sigma_x * davenport_peak_factor(rate, excitation.duration)
-    else:
-        times = np.arange(0.0, excitation.duration + 1e-9, _HISTORY_STEP)
-        peaks = []
-        for sigma, nu in zip(sigma_x, rate):
-            variance_eq, duration_eq = equivalent_stationary(envelope_variance(excitation.envelope, times, sigma**2), times)
-            peaks.append(math.sqrt(variance_eq) * davenport_peak_factor(nu, duration_eq))
-        peaks = np.array(peaks)
     u1, u2 = peaks
     correlation = response.covariance_displacement / (sigma_x[0] * sigma_x[1])
     return {
@@ -808,7 +840,8 @@ def estimate(
     """
     check_probability(target_probability)
     linearized = linearized or linearize_pair(case)
-    model, linear, response, crossings = _pair_statistics(case, linearized, impact_damping)
+    pair = _pair_statistics(case, linearized, impact_damping)
+    model, linear, response, crossings = pair.model, pair.linear, pair.response, pair.crossings
     contact = case.contact
     gap = np.array([contact.gap])
     impacts = float(crossings.intensity(gap, np.zeros(1))[0, 0])
@@ -833,7 +866,7 @@ def estimate(
         impacting_velocity_ratio=float(impacting.ratio_velocity[0]),
         impact_memory=float(impacting.memory[0]),
         impact_dashpot=float(impacting.dashpot[0]),
-        separation_rules=_separation_rules(case, linear),
+        separation_rules=_separation_rules(case, linearized, linear, pair.weights, pair.history, pair.floor_frfs),
         paper=paper_estimate(case, linearized, linear, paper_variance, model),
         response=linear,
         warnings=_warnings(
@@ -873,5 +906,6 @@ def force_versus_gap(case: Case, gaps, linearized=None) -> GapCurve:
     """The recommended estimate over many gaps [m]; the linearization and the
     response statistics are computed once (see also :meth:`Estimate.gap_curve`)."""
     linearized = linearized or linearize_pair(case)
-    model, linear, _, crossings = _pair_statistics(case, linearized)
+    pair = _pair_statistics(case, linearized)
+    model, linear, crossings = pair.model, pair.linear, pair.crossings
     return _gap_curve(case, crossings, gaps, paper_estimate(case, linearized, linear, model=model).force_expected)

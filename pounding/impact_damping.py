@@ -50,7 +50,7 @@ from .response import (
     ContactResponse,
     _contact_floors,
     _linearized,
-    floor_response_and_receptance,
+    contact_floor_frfs,
     relative_displacement_psd,
     response_with_residual,
     spectral_grid,
@@ -298,7 +298,9 @@ def _jump_modes(case, linearized, model) -> tuple[np.ndarray, np.ndarray, np.nda
     return np.concatenate(rates), np.concatenate(x_modes), np.concatenate(v_modes)
 
 
-def impact_damping(case, linearized=None, model=None, response: ContactResponse | None = None) -> ImpactDamping:
+def impact_damping(
+    case, linearized=None, model=None, response: ContactResponse | None = None, floor_frfs=None
+) -> ImpactDamping:
     """The free motion's data for the impacts' dashpot of ``case``.
 
     Parameters
@@ -310,6 +312,8 @@ def impact_damping(case, linearized=None, model=None, response: ContactResponse 
     response : ContactResponse, optional
         The free motion's stationary response (default: with the residual's
         response, :func:`~pounding.response.response_with_residual`).
+    floor_frfs : tuple, optional
+        :func:`~pounding.response.contact_floor_frfs`, if computed already.
     """
     linearized = _linearized(case, linearized)
     if model is None:
@@ -317,7 +321,7 @@ def impact_damping(case, linearized=None, model=None, response: ContactResponse 
     if response is None:
         response = response_with_residual(case, linearized, model)
     omega = spectral_grid()
-    (h1, r1), (h2, r2) = (floor_response_and_receptance(lb, omega, floor) for lb, floor in zip(linearized, _contact_floors(case)))
+    (h1, r1), (h2, r2) = floor_frfs if floor_frfs is not None else contact_floor_frfs(case, linearized)
     psd = relative_displacement_psd(case, linearized, omega, (h1, h2))
     feedback = 1j * omega * (r1 + r2)
     # Trapezoid weights, explicit: the kernels sum the damped spectrum many times.

@@ -38,6 +38,8 @@ __all__ = [
     "ContactResponse",
     "FloorStatistics",
     "contact_covariance_history",
+    "contact_floor_bandwidths",
+    "contact_floor_frfs",
     "contact_output_matrix",
     "floor_response_and_receptance",
     "floor_statistics",
@@ -126,7 +128,8 @@ class ContactResponse:
 
     @property
     def sigma_relative_velocity(self) -> float:
-        """sigma of V = v1 - v2 [m/s]: sigma_v1^2 + sigma_v2^2 - 2 E[v1 v2] (Eq. 16)."""
+        """sigma of V = v1 - v2 [m/s]: sigma_v1^2 + sigma_v2^2 - 2 E[v1 v2] (Eq. 16; the terms Eq. 16-17
+        call standard deviations are variances, NOTES.md 3)."""
         return self._sigma_difference(_V1, _V2)
 
     @property
@@ -269,7 +272,9 @@ def frequency_response(linearized: LinearizedBuilding, omega) -> np.ndarray:
 
     Eq. 19 gives z = c_e i w u / (i w - k_e) per storey, so the storey force is
     k_dyn(w) u with k_dyn = alpha k + (1 - alpha) k c_e i w / (i w - k_e) + i w c;
-    then (-w^2 M + T^T diag(k_dyn) T) H = -M 1. For one storey |H|^2 is Eq. 22.
+    then (-w^2 M + T^T diag(k_dyn) T) H = -M 1. For one storey |H|^2 is Eq. 22,
+    which prints only the modulus: the cross terms of Eq. 18 and 25 need the
+    complex H of each building (NOTES.md 6).
 
     Parameters
     ----------
@@ -449,11 +454,41 @@ _SPECTRAL_GRID = np.geomspace(1e-4, 2.0e3, 2001)
 _SPECTRAL_GRID.setflags(write=False)
 
 
+def _trapezoid_powers(omega: np.ndarray) -> np.ndarray:
+    """Rows w^0, w^1, w^2 times the trapezoid weights of ``omega``: spectral moments as one product."""
+    steps = np.diff(omega)
+    weights = 0.5 * (np.r_[steps, 0.0] + np.r_[0.0, steps])
+    return omega ** np.arange(3)[:, None] * weights
+
+
+_TRAPEZOID_POWERS = _trapezoid_powers(_SPECTRAL_GRID)
+
+
 def spectral_grid() -> np.ndarray:
     """The fixed logarithmic frequency grid [rad/s] of the spectral moments of X
     (read-only): fine enough for damping ratios down to 1 %; the yielded storeys
     keep response down to very low frequencies, hence it starts at 1e-4 rad/s."""
     return _SPECTRAL_GRID
+
+
+def contact_floor_frfs(case, linearized=None) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
+    """Each contact floor's FRF per unit ground acceleration [s^2] and its
+    receptance [m/N] on :func:`spectral_grid` (:func:`floor_response_and_receptance`),
+    building 1 then building 2."""
+    linearized = _linearized(case, linearized)
+    omega = spectral_grid()
+    return tuple(floor_response_and_receptance(lb, omega, floor) for lb, floor in zip(linearized, _contact_floors(case)))
+
+
+def contact_floor_bandwidths(case, linearized=None, floor_frfs=None) -> np.ndarray:
+    """Vanmarcke's q of each contact floor's displacement x1, x2 [-] (as
+    :func:`bandwidth_relative_displacement` for X); ``floor_frfs``: from
+    :func:`contact_floor_frfs`, if computed already."""
+    if floor_frfs is None:
+        floor_frfs = contact_floor_frfs(case, linearized)
+    omega = spectral_grid()
+    powers = _TRAPEZOID_POWERS * case.excitation.spectrum.psd(omega)
+    return np.array([vanmarcke_bandwidth(*(powers @ (2.0 * np.abs(frf) ** 2))) for frf, _ in floor_frfs])
 
 
 def relative_displacement_psd(case, linearized, omega, floor_frfs=None) -> np.ndarray:

@@ -46,12 +46,16 @@ def _monte_carlo(case, seed=31):
 )
 def test_recommended_estimate_within_ten_percent(case):
     """Where the gap is below sigma_X the recommended estimate was measured
-    within 10 % on 20 of 26 grid cases; these are among them."""
+    within 10 % on 22 of 26 grid cases; these are among them."""
     mean, error = _monte_carlo(case)
     result = estimate(case)
     assert result.sigma_relative_displacement > case.contact.gap
     assert not any("gap exceeds sigma_X" in warning for warning in result.warnings)
     assert abs(result.force_expected - mean) < 0.10 * mean + 3 * error
+    if case.name.startswith(("section5", "section6")):
+        # The paper's own cases (e = 0.65): its estimator was measured 10-21 % low, the
+        # 20-30 % of NOTES.md's independent check less the errata fixed here.
+        assert mean * 0.70 - 3 * error < result.paper.force_expected < mean * 0.97 + 3 * error
 
 
 def test_elastic_pair_far_from_the_mean_within_ten_percent():
@@ -61,6 +65,27 @@ def test_elastic_pair_far_from_the_mean_within_ten_percent():
     result = simulate(case, records=600, seed=31)
     estimated = estimate(case).force_expected
     assert abs(estimated - result.force_max_mean) < 0.10 * result.force_max_mean + 3 * result.force_max_std_error
+
+
+@pytest.mark.parametrize("name", ["section5-T2-0.4", "section5-T2-0.4-nonstationary"])
+def test_separation_rules_rest_on_the_floors_expected_peaks(name):
+    """Elastic buildings that never touch (exactly Gaussian floors): each floor's
+    expected peak |x| within 5 % of the simulated mean (documented -5 % to +2 %;
+    Davenport's stationary factor, used before, put it +10 % to +20 % high), and
+    the three rules built from the two peaks as SRSS, ABS and DDC define them."""
+    case = _vary(load_case(name), elastic=True, gap=2.0, name="apart")
+    result = simulate(case, records=300, seed=17)
+    assert result.impacts.sum() == 0
+    rules = estimate(case).separation_rules
+    simulated = result.displacement_max.mean(axis=0)
+    error = result.displacement_max.std(axis=0, ddof=1) / math.sqrt(result.n_records)
+    u1, u2 = rules["peak_displacement"]
+    np.testing.assert_array_less(np.abs([u1, u2] - simulated), 0.05 * simulated + 2 * error)
+    rho = rules["displacement_correlation"]
+    assert -1 <= rho <= 1
+    assert rules["srss"] == pytest.approx(math.hypot(u1, u2), rel=1e-12)
+    assert rules["abs"] == pytest.approx(u1 + u2, rel=1e-12)
+    assert rules["ddc"] == pytest.approx(math.sqrt(u1**2 + u2**2 - 2 * rho * u1 * u2), rel=1e-12)
 
 
 def test_recommended_beats_the_paper_where_the_paper_is_weakest():

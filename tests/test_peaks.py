@@ -15,6 +15,7 @@ from pounding.peaks import (
     davenport_peak_factor,
     envelope_variance,
     equivalent_stationary,
+    expected_absolute_peak,
     expected_peak,
     michaelov_variance,
     time_varying_covariance,
@@ -82,6 +83,44 @@ def test_equivalent_stationary_properties():
         equivalent_stationary(np.zeros(times.size), times)
     with pytest.raises(CaseError):
         equivalent_stationary(shape, times[::-1])
+
+
+@pytest.mark.parametrize("bandwidth", [1.0, 0.3, 0.08])
+def test_expected_absolute_peak_is_the_poisson_mean_of_vanmarcke_clumps(bandwidth):
+    """A stationary record cut into instants: the same as one integral by quad
+    of 1 - exp(-N(u)) with Vanmarcke's double-barrier count over the whole
+    duration; at q = 1 the clumps hardly matter and it is the Poisson mean of
+    the extreme of 2 nu T crossings, whose asymptote is Davenport's peak."""
+    sigma, rate, duration = 0.02, 1.5, 20.0  # [m], nu [1/s], [s]
+    sigma_velocity = 2 * math.pi * rate * sigma
+    weights = np.full(81, duration / 80)
+    weights[[0, -1]] /= 2
+    peak = expected_absolute_peak(np.full(81, sigma), np.full(81, sigma_velocity), weights, bandwidth)
+
+    def exceedance(u):
+        r = u / sigma
+        clumps = min(1.0, -math.expm1(-math.sqrt(math.pi / 2) * bandwidth**1.2 * r) / -math.expm1(-0.5 * r * r)) if r > 0 else 1.0
+        return -math.expm1(-2 * rate * duration * math.exp(-0.5 * r * r) * clumps)
+
+    assert peak == pytest.approx(quad(exceedance, 0.0, 10 * sigma, limit=200)[0], rel=1e-4)
+    if bandwidth == 1.0:
+        assert peak == pytest.approx(sigma * _mean_of_extreme(2 * rate * duration), rel=2e-3)
+    else:  # narrow band: crossings come in runs, fewer independent tries, a lower peak
+        assert peak < 0.97 * sigma * _mean_of_extreme(2 * rate * duration)
+
+
+def test_expected_absolute_peak_follows_a_build_up_and_rejects_bad_input():
+    """Half the record at rest counts nothing: the peak of the other half alone."""
+    sigma = np.r_[np.zeros(40), np.full(41, 0.02)]
+    weights = np.full(81, 0.25)
+    half = expected_absolute_peak(sigma, 5 * sigma, weights, 0.5)
+    assert half == pytest.approx(expected_absolute_peak(sigma[40:], 5 * sigma[40:], weights[40:], 0.5), rel=1e-12)
+    assert half < expected_absolute_peak(np.full(81, 0.02), np.full(81, 0.1), weights, 0.5)
+    for kwargs, field in [({"bandwidth": 0.0}, "bandwidth"), ({"bandwidth": 1.5}, "bandwidth"),
+                          ({"weights": weights[:-1]}, "weights"), ({"sigma": np.zeros(81)}, "sigma")]:
+        arguments = {"sigma": sigma, "sigma_derivative": 5 * sigma, "weights": weights, "bandwidth": 0.5, **kwargs}
+        with pytest.raises(CaseError, match=field):
+            expected_absolute_peak(**arguments)
 
 
 def test_envelope_variance_is_eq28():
