@@ -16,7 +16,7 @@ Cases: the grid's buildings and excitations (each once, the gap variants
 dropped) and every fourth case of a random draw (seed 2030, a draw not used
 elsewhere).
 
-    python3 docs/separation_rules.py            # about 2 min on 2 cores
+    python3 docs/separation_rules.py            # about 1 min on 2 cores
 """
 
 from __future__ import annotations

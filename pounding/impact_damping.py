@@ -54,6 +54,7 @@ from .response import (
     relative_displacement_psd,
     response_with_residual,
     spectral_grid,
+    spectral_weights,
     vanmarcke_bandwidth,
 )
 
@@ -325,10 +326,7 @@ def impact_damping(
     psd = relative_displacement_psd(case, linearized, omega, (h1, h2))
     feedback = 1j * omega * (r1 + r2)
     # Trapezoid weights, explicit: the kernels sum the damped spectrum many times.
-    weights = np.zeros_like(omega)
-    steps = np.diff(omega)
-    weights[:-1] += 0.5 * steps
-    weights[1:] += 0.5 * steps
+    weights = spectral_weights()
     moments = [float(np.sum(weights * psd * omega**k)) for k in (0, 1, 2)]
     spectra = (
         weights,

@@ -49,6 +49,8 @@ __all__ = [
     "response_frequency",
     "response_lyapunov",
     "response_with_residual",
+    "spectral_grid",
+    "spectral_weights",
     "vanmarcke_bandwidth",
 ]
 
@@ -454,14 +456,15 @@ _SPECTRAL_GRID = np.geomspace(1e-4, 2.0e3, 2001)
 _SPECTRAL_GRID.setflags(write=False)
 
 
-def _trapezoid_powers(omega: np.ndarray) -> np.ndarray:
-    """Rows w^0, w^1, w^2 times the trapezoid weights of ``omega``: spectral moments as one product."""
+def _trapezoid_weights(omega: np.ndarray) -> np.ndarray:
     steps = np.diff(omega)
-    weights = 0.5 * (np.r_[steps, 0.0] + np.r_[0.0, steps])
-    return omega ** np.arange(3)[:, None] * weights
+    return 0.5 * (np.r_[steps, 0.0] + np.r_[0.0, steps])
 
 
-_TRAPEZOID_POWERS = _trapezoid_powers(_SPECTRAL_GRID)
+_SPECTRAL_WEIGHTS = _trapezoid_weights(_SPECTRAL_GRID)
+_SPECTRAL_WEIGHTS.setflags(write=False)
+# Rows w^0, w^1, w^2 times the trapezoid weights: the spectral moments as one product.
+_TRAPEZOID_POWERS = _SPECTRAL_GRID ** np.arange(3)[:, None] * _SPECTRAL_WEIGHTS
 
 
 def spectral_grid() -> np.ndarray:
@@ -469,6 +472,12 @@ def spectral_grid() -> np.ndarray:
     (read-only): fine enough for damping ratios down to 1 %; the yielded storeys
     keep response down to very low frequencies, hence it starts at 1e-4 rad/s."""
     return _SPECTRAL_GRID
+
+
+def spectral_weights() -> np.ndarray:
+    """Trapezoid weights [rad/s] of :func:`spectral_grid` (read-only): a
+    spectral moment is ``spectral_weights() @ (omega**k * spectrum)``."""
+    return _SPECTRAL_WEIGHTS
 
 
 def contact_floor_frfs(case, linearized=None) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
