@@ -105,6 +105,9 @@ def _parser() -> argparse.ArgumentParser:
     estimate.add_argument("--paper-variance", choices=("eq28", "exact"), default="eq28",
                           help="the paper's method under an envelope: sigma_V(t) by Eq. 28 (default, as published) "
                           "or by the exact time-varying covariance")
+    estimate.add_argument("--michaelov-n1", type=float, default=3.0, metavar="N1",
+                          help="the paper's method under an envelope: order n1 of the moments of Michaelov's equivalent "
+                          "stationary process, Eq. 29, in [0.5, 20] (default 3, as the paper)")
     estimate.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
 
     validate = commands.add_parser(
@@ -281,7 +284,8 @@ def _estimate(args) -> int:
     from .estimator import estimate
 
     case = load_case(args.case)
-    result = estimate(case, target_probability=args.target_probability, paper_variance=args.paper_variance)
+    result = estimate(case, target_probability=args.target_probability, paper_variance=args.paper_variance,
+                      michaelov_n1=args.michaelov_n1)
     if args.json:
         print(json.dumps(result.to_dict()))
         return 0
@@ -312,6 +316,9 @@ def _estimate(args) -> int:
         print(f"  expected extreme force    {_format_force(paper.force_expected)}")
     print(f"  expected extreme velocity {paper.relative_velocity_expected:.4f} m/s   (peak factor {paper.peak_factor:.3f})")
     print(f"  crossing rate (Eq. 24)    {paper.crossing_rate:.4f} 1/s, effective duration {paper.duration_effective:.2f} s")
+    if paper.michaelov_n1 is not None:
+        print(f"  equivalent sigma (Eq. 29) {paper.sigma_relative_velocity_equivalent:.4f} m/s   "
+              f"(Michaelov's n1 = {paper.michaelov_n1:g}, sigma_V(t) by {args.paper_variance})")
     for warning in result.warnings:
         print(f"warning: {warning}")
     return 0

@@ -55,7 +55,15 @@ from .errors import CaseError, check_probability
 from .excitation import CloughPenzien
 from . import impact_damping as impacts
 from .linearization import StateSpace, linearize_pair, pair_state_space
-from .peaks import davenport_peak_factor, envelope_variance, equivalent_stationary, expected_absolute_peak
+from .peaks import (
+    VANMARCKE_DOUBLE_BARRIER,
+    merged_instants,
+    davenport_peak_factor,
+    envelope_variance,
+    equivalent_stationary,
+    expected_absolute_peak,
+    vanmarcke_clumps,
+)
 from .response import (
     ContactResponse,
     bandwidth_relative_displacement,
@@ -67,7 +75,9 @@ from .response import (
 )
 
 __all__ = [
+    "DEFAULT_MICHAELOV_N1",
     "DEFAULT_TARGET_PROBABILITY",
+    "MICHAELOV_N1_RANGE",
     "PAPER_VARIANCE_METHODS",
     "REGIMES",
     "Estimate",
@@ -115,6 +125,8 @@ class PaperEstimate:
         sigma_eq of Eq. 29 for non-stationary motion [m/s].
     penetration_expected : float or None
         delta_e of Eq. 13 with e delta_dot_e [m].
+    michaelov_n1 : float or None
+        The order n1 of Eq. 29's moments for non-stationary motion [-].
     """
 
     force_expected: float | None
@@ -124,6 +136,7 @@ class PaperEstimate:
     peak_factor: float
     sigma_relative_velocity_equivalent: float | None
     penetration_expected: float | None
+    michaelov_n1: float | None = None
 
 
 @dataclass(frozen=True)
@@ -258,13 +271,33 @@ class Estimate:
         }
         if not self.case.excitation.stationary:
             out["paper"]["sigma_relative_velocity_equivalent"] = paper.sigma_relative_velocity_equivalent
+            out["paper"]["michaelov_n1"] = paper.michaelov_n1
         return out
 
 
 # --- the paper's method ------------------------------------------------------
 
 
-def paper_estimate(case: Case, linearized, response: ContactResponse, variance_method: str = "eq28", model: StateSpace | None = None) -> PaperEstimate:
+DEFAULT_MICHAELOV_N1 = 3.0
+"""Order n1 of Michaelov's moments (Eq. 29); the paper finds 3 or 4 usually within 10 %."""
+MICHAELOV_N1_RANGE = (0.5, 20.0)
+"""Allowed n1: below 0.5 the moments weigh the long quiet tail of the record, above 20 only its peak instant."""
+
+
+def _check_michaelov_n1(n1) -> None:
+    low, high = MICHAELOV_N1_RANGE
+    if isinstance(n1, bool) or not isinstance(n1, (int, float)) or not low <= n1 <= high:
+        raise CaseError("michaelov_n1", f"must lie in [{low:g}, {high:g}], got {n1!r}")
+
+
+def paper_estimate(
+    case: Case,
+    linearized,
+    response: ContactResponse,
+    variance_method: str = "eq28",
+    model: StateSpace | None = None,
+    michaelov_n1: float = DEFAULT_MICHAELOV_N1,
+) -> PaperEstimate:
     """The published estimator, Eq. 12-30.
 
     Parameters
@@ -278,7 +311,10 @@ def paper_estimate(case: Case, linearized, response: ContactResponse, variance_m
         A(t)^2 sigma_inf^2, or ``"exact"``, the time-varying covariance.
     model : StateSpace, optional
         The pair's :func:`~pounding.linearization.pair_state_space`, if built already.
+    michaelov_n1 : float
+        Order n1 of Eq. 29's moments under an envelope, in :data:`MICHAELOV_N1_RANGE`.
     """
+    _check_michaelov_n1(michaelov_n1)
     sigma_v = response.sigma_relative_velocity
     rate = response.zero_crossing_rate  # Eq. 24 (NOTES.md 11: the displacement's rate)
     excitation = case.excitation
@@ -294,7 +330,7 @@ def paper_estimate(case: Case, linearized, response: ContactResponse, variance_m
             variance = history[:, 2, 2] + history[:, 3, 3] - 2 * history[:, 2, 3]
         else:
             raise CaseError("variance_method", f"must be one of {', '.join(PAPER_VARIANCE_METHODS)}, got {variance_method!r}")
-        variance_eq, duration = equivalent_stationary(variance, times, n1=3)  # Eq. 29
+        variance_eq, duration = equivalent_stationary(variance, times, n1=michaelov_n1)  # Eq. 29
         sigma = sigma_equivalent = math.sqrt(variance_eq)
     factor = davenport_peak_factor(rate, duration)  # Eq. 23 / 30
     velocity = factor * sigma
@@ -307,7 +343,8 @@ def paper_estimate(case: Case, linearized, response: ContactResponse, variance_m
         separation = contact.restitution * velocity
         force = float(undamped_peak_force(contact, separation, case.reduced_mass))
         penetration = (force / contact.stiffness) ** (2.0 / 3.0)
-    return PaperEstimate(force, float(velocity), float(rate), float(duration), float(factor), sigma_equivalent, penetration)
+    n1 = None if excitation.stationary else float(michaelov_n1)
+    return PaperEstimate(force, float(velocity), float(rate), float(duration), float(factor), sigma_equivalent, penetration, n1)
 
 
 # --- the recommended estimator ----------------------------------------------
@@ -343,15 +380,15 @@ def _intensity_kernel(gaps, velocities, sigma_x, sigma_v, weights, clumping, sca
                 if r2 > 1e-18:
                     # 1 - exp(-r^2 / 2) from the two factors already at hand, but by expm1 where it is small.
                     envelope_tail = 1.0 - level * speed if r2 > 1e-2 else -math.expm1(-0.5 * r2)
-                    clumps = min(1.0, -math.expm1(-clumping[i] * math.sqrt(r2)) / envelope_tail)
+                    clumps = vanmarcke_clumps(clumping[i], math.sqrt(r2), envelope_tail)
                 out[i, j] += factor * speed * clumps
     return out
 
 
-# sqrt(pi / 2) is Vanmarcke's constant for two crossings a period while the envelope
-# is high, as the time cut counts them at the mean position; the one-sided
+# Vanmarcke's double-barrier constant sqrt(pi / 2), two crossings a period while the
+# envelope is high, as the time cut counts them at the mean position; the one-sided
 # sqrt(2 pi) was measured worse (docs/estimator.md, "Clumps").
-_VANMARCKE = math.sqrt(math.pi / 2.0)
+_VANMARCKE = VANMARCKE_DOUBLE_BARRIER
 
 
 @dataclass(frozen=True)
@@ -517,16 +554,8 @@ def _merged(
 ) -> _Crossings:
     """Join consecutive instants whose sigmas agree to ``tolerance``: once the
     response has built up, a stationary record is one instant of weight T - t."""
-    groups = [[sigma_x[0], sigma_v[0], weights[0]]]
-    for x, v, w in zip(sigma_x[1:], sigma_v[1:], weights[1:]):
-        group = groups[-1]
-        if abs(x / group[0] - 1.0) < tolerance and abs(v / group[1] - 1.0) < tolerance:
-            group[2] += w
-        else:
-            groups.append([x, v, w])
-    x, v, w = np.array(groups).T
-    arrays = (np.ascontiguousarray(a) for a in (x, v, w))
-    return _Crossings(*arrays, bandwidth, frequency_squared, damping)
+    x, v, w = merged_instants(*(np.ascontiguousarray(a, dtype=float) for a in (sigma_x, sigma_v, weights)), tolerance)
+    return _Crossings(x, v, w, bandwidth, frequency_squared, damping)
 
 
 def _opposing_forces(crossings: _Crossings, gaps: np.ndarray, reduced_mass: float) -> np.ndarray:
@@ -612,10 +641,9 @@ def _separation_rules(case: Case, linearized, response: ContactResponse, weights
     (:func:`~pounding.peaks.expected_absolute_peak`); DDC with the floors'
     stationary correlation (``response``)."""
     bandwidths = contact_floor_bandwidths(case, linearized, floor_frfs)
-    peaks = [
-        expected_absolute_peak(np.sqrt(history[:, floor, floor]), np.sqrt(history[:, 2 + floor, 2 + floor]), weights, q)
-        for floor, q in enumerate(bandwidths)
-    ]
+    # history's outputs are x1, x2, v1, v2, ...; at rest a variance may round to just below 0.
+    sigmas = np.sqrt(np.maximum(np.diagonal(history, axis1=1, axis2=2), 0.0))
+    peaks = [expected_absolute_peak(sigmas[:, floor], sigmas[:, 2 + floor], weights, q) for floor, q in enumerate(bandwidths)]
     sigma_x = np.array(response.sigma_displacement)
     u1, u2 = peaks
     correlation = response.covariance_displacement / (sigma_x[0] * sigma_x[1])
@@ -820,6 +848,7 @@ def estimate(
     linearized=None,
     paper_variance: str = "eq28",
     impact_damping: bool = True,
+    michaelov_n1: float = DEFAULT_MICHAELOV_N1,
 ) -> Estimate:
     """Expected extreme pounding force of ``case`` by both closed forms.
 
@@ -837,8 +866,12 @@ def estimate(
         Count the largest approach on the motion damped by the impacts before
         it (default); ``False`` counts it on the free motion, as this
         estimator did before (for comparisons, docs/estimator.md).
+    michaelov_n1 : float
+        For the paper's method under an envelope: the order n1 of Eq. 29's
+        moments (default 3, as the paper), in :data:`MICHAELOV_N1_RANGE`.
     """
     check_probability(target_probability)
+    _check_michaelov_n1(michaelov_n1)
     linearized = linearized or linearize_pair(case)
     pair = _pair_statistics(case, linearized, impact_damping)
     model, linear, response, crossings = pair.model, pair.linear, pair.response, pair.crossings
@@ -867,7 +900,7 @@ def estimate(
         impact_memory=float(impacting.memory[0]),
         impact_dashpot=float(impacting.dashpot[0]),
         separation_rules=_separation_rules(case, linearized, linear, pair.weights, pair.history, pair.floor_frfs),
-        paper=paper_estimate(case, linearized, linear, paper_variance, model),
+        paper=paper_estimate(case, linearized, linear, paper_variance, model, michaelov_n1),
         response=linear,
         warnings=_warnings(
             case, linearized, response.sigma_relative_displacement, share, required_gap, crossings.bandwidth,

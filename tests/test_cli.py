@@ -120,6 +120,7 @@ def test_simulate_table_has_units():
         (("simulate", "section5-T2-0.4", "--tolerance", "0.5"), "tolerance"),
         (("explode",), "invalid choice"),
         (("estimate", "section5-T2-0.4", "--target-probability", "1"), "target_probability"),
+        (("estimate", "section5-T2-0.4-nonstationary", "--michaelov-n1", "0"), "michaelov_n1"),
         (("estimate", "nowhere.toml"), "neither a TOML file nor a preset"),
         (("report", "section5-T2-0.4", "-o", "/no/such/folder/report.html"), "--output"),
         (("report", "section5-T2-0.4"), "--output"),

@@ -83,6 +83,24 @@ def test_paper_equivalent_stationary_process_for_modulated_motion():
     assert paper.force_expected == pytest.approx(exact.force_expected, rel=0.04)
 
 
+def test_michaelov_order_weighs_the_strong_motion_more_as_it_grows():
+    """Eq. 29 with Eq. 28's A(t)^2 sigma_inf^2 (A's peak is 1): sigma_eq grows
+    with n1 towards sigma_inf, the strongest instant's; n1 = 3 is the default;
+    outside its range n1 is named."""
+    case = load_case("section5-T2-0.4-nonstationary")
+    linearized = linearize_pair(case)
+    sigma_inf = estimate(case, linearized=linearized).response.sigma_relative_velocity  # the paper's, linearized
+    equivalent = {n1: estimate(case, linearized=linearized, michaelov_n1=n1).paper for n1 in (1, 3, 20)}
+    sigmas = [equivalent[n1].sigma_relative_velocity_equivalent for n1 in (1, 3, 20)]
+    assert sigmas[0] < sigmas[1] < sigmas[2] < sigma_inf < 1.03 * sigmas[2]
+    assert equivalent[20].duration_effective < equivalent[3].duration_effective < equivalent[1].duration_effective
+    default = estimate(case, linearized=linearized).paper
+    assert default.michaelov_n1 == 3 and default.force_expected == equivalent[3].force_expected
+    for bad in (0.0, 25, float("nan"), "3"):
+        with pytest.raises(CaseError, match="michaelov_n1"):
+            estimate(case, linearized=linearized, michaelov_n1=bad)
+
+
 def test_paper_exact_variance_option_is_the_time_varying_covariance():
     """``paper_variance="exact"``: Eq. 29 applied to sigma_V(t) of the Lyapunov
     differential equation, here integrated by solve_ivp from rest (the
