@@ -72,6 +72,7 @@ from .response import (
     contact_floor_frfs,
     response_lyapunov,
     response_with_residual,
+    trapezoid_weights,
 )
 
 __all__ = [
@@ -491,8 +492,7 @@ def _history(case: Case, linearized, model: StateSpace) -> tuple[np.ndarray, np.
         times = np.append(times, excitation.duration)
     modulation = "ground" if excitation.stationary else "bedrock"
     history = contact_covariance_history(case, linearized, times, modulation=modulation, model=model)
-    weights = np.concatenate([[0.5 * (times[1] - times[0])], 0.5 * (times[2:] - times[:-2]), [0.5 * (times[-1] - times[-2])]])
-    return weights, history
+    return trapezoid_weights(times), history
 
 
 def _crossings(

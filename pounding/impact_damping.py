@@ -54,6 +54,7 @@ from .response import (
     relative_displacement_psd,
     response_with_residual,
     spectral_grid,
+    spectral_moments,
     spectral_weights,
     vanmarcke_bandwidth,
 )
@@ -327,7 +328,7 @@ def impact_damping(
     feedback = 1j * omega * (r1 + r2)
     # Trapezoid weights, explicit: the kernels sum the damped spectrum many times.
     weights = spectral_weights()
-    moments = [float(np.sum(weights * psd * omega**k)) for k in (0, 1, 2)]
+    moments = [float(moment) for moment in spectral_moments(psd)]
     spectra = (
         weights,
         psd,

@@ -50,7 +50,9 @@ __all__ = [
     "response_lyapunov",
     "response_with_residual",
     "spectral_grid",
+    "spectral_moments",
     "spectral_weights",
+    "trapezoid_weights",
     "vanmarcke_bandwidth",
 ]
 
@@ -456,12 +458,14 @@ _SPECTRAL_GRID = np.geomspace(1e-4, 2.0e3, 2001)
 _SPECTRAL_GRID.setflags(write=False)
 
 
-def _trapezoid_weights(omega: np.ndarray) -> np.ndarray:
-    steps = np.diff(omega)
+def trapezoid_weights(grid) -> np.ndarray:
+    """Trapezoid-rule weights of an increasing ``grid``: ``weights @ f`` is the
+    integral of f sampled on it (in the grid's units)."""
+    steps = np.diff(np.asarray(grid, dtype=float))
     return 0.5 * (np.r_[steps, 0.0] + np.r_[0.0, steps])
 
 
-_SPECTRAL_WEIGHTS = _trapezoid_weights(_SPECTRAL_GRID)
+_SPECTRAL_WEIGHTS = trapezoid_weights(_SPECTRAL_GRID)
 _SPECTRAL_WEIGHTS.setflags(write=False)
 # Rows w^0, w^1, w^2 times the trapezoid weights: the spectral moments as one product.
 _TRAPEZOID_POWERS = _SPECTRAL_GRID ** np.arange(3)[:, None] * _SPECTRAL_WEIGHTS
@@ -480,6 +484,14 @@ def spectral_weights() -> np.ndarray:
     return _SPECTRAL_WEIGHTS
 
 
+def spectral_moments(spectrum, orders=(0, 1, 2)) -> np.ndarray:
+    """One-sided spectral moments lambda_k = int_0^inf w^k G(w) dw of a
+    ``spectrum`` G sampled on :func:`spectral_grid`, for each k of ``orders``."""
+    if tuple(orders) == (0, 1, 2):
+        return _TRAPEZOID_POWERS @ spectrum
+    return (_SPECTRAL_GRID ** np.asarray(orders, dtype=float)[:, None] * _SPECTRAL_WEIGHTS) @ spectrum
+
+
 def contact_floor_frfs(case, linearized=None) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
     """Each contact floor's FRF per unit ground acceleration [s^2] and its
     receptance [m/N] on :func:`spectral_grid` (:func:`floor_response_and_receptance`),
@@ -495,9 +507,8 @@ def contact_floor_bandwidths(case, linearized=None, floor_frfs=None) -> np.ndarr
     :func:`contact_floor_frfs`, if computed already."""
     if floor_frfs is None:
         floor_frfs = contact_floor_frfs(case, linearized)
-    omega = spectral_grid()
-    powers = _TRAPEZOID_POWERS * case.excitation.spectrum.psd(omega)
-    return np.array([vanmarcke_bandwidth(*(powers @ (2.0 * np.abs(frf) ** 2))) for frf, _ in floor_frfs])
+    ground = case.excitation.spectrum.psd(spectral_grid())
+    return np.array([vanmarcke_bandwidth(*spectral_moments(2.0 * np.abs(frf) ** 2 * ground)) for frf, _ in floor_frfs])
 
 
 def relative_displacement_psd(case, linearized, omega, floor_frfs=None) -> np.ndarray:
@@ -518,9 +529,7 @@ def spectral_moments_relative_displacement(case, linearized=None, orders=(0, 1, 
     covariance gives, sets the bandwidth. Integrated on :func:`spectral_grid`.
     """
     linearized = _linearized(case, linearized)
-    omega = spectral_grid()
-    spectrum = relative_displacement_psd(case, linearized, omega)
-    return np.array([np.trapezoid(omega**k * spectrum, omega) for k in orders])
+    return spectral_moments(relative_displacement_psd(case, linearized, spectral_grid()), orders)
 
 
 @njit(cache=True)
