@@ -11,7 +11,7 @@ import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
-from .contact import CONTACT_MODELS, Contact
+from .contact import Contact, contact_law
 from .errors import CaseError
 from .excitation import CloughPenzien, Excitation, KanaiTajimi, ShinozukaSato
 from .presets import preset_description, preset_names, preset_text
@@ -193,9 +193,7 @@ def _contact(table, units: UnitSystem) -> Contact:
     where = "contact"
     _check_keys(table, _CONTACT_KEYS, where)
     model = table.get("model", "jankowski")
-    if model not in CONTACT_MODELS:
-        raise CaseError(f"{where}.model", f"unknown contact model {model!r}; allowed: {', '.join(CONTACT_MODELS)}")
-    exponent = 1.0 if model == "linear" else 1.5
+    exponent = contact_law(model, f"{where}.model").stiffness_exponent
     return _build(
         where,
         Contact,

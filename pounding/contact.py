@@ -3,13 +3,15 @@
 delta = x1 - x2 - gap is the penetration (positive in contact) and delta_dot
 its rate; the force pushes building 1 back and building 2 forward (Eq. 10).
 
-Models, selected by name:
+Laws, selected by name from :data:`CONTACT_LAWS` (each written once there:
+its name, force exponent, damping from the restitution and kernel code; the
+force itself is compiled in :func:`pounding.integrator.contact_force`):
 
 ``jankowski``
     Nonlinear viscoelastic (Jankowski 2005), Eq. 3-5: F = beta delta^1.5 +
     c(delta) delta_dot while approaching, beta delta^1.5 while restoring, with
     c = 2 xi sqrt(beta sqrt(delta) m1 m2 / (m1 + m2)). Eq. 4 as printed has
-    sqrt(beta delta ...), which is not dimensionally consistent (NOTES.md 1b);
+    sqrt(beta delta ...), which is not dimensionally consistent (docs/errata.md, E2);
     Jankowski's own law, and OpenSees' ``JankowskiImpact``, use sqrt(delta).
 ``hertz``
     Elastic Hertz law F = beta delta^1.5 (no energy loss; ``restitution`` unused).
@@ -25,18 +27,23 @@ Models, selected by name:
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-from numba import njit
 
+from . import integrator
 from .errors import CaseError
+from .integrator import contact_force, single_impact_peak
 
 __all__ = [
+    "CONTACT_LAWS",
     "CONTACT_MODELS",
     "Contact",
+    "ContactLaw",
     "contact_force",
+    "contact_law",
     "hertz_peak_penetration",
     "impact_peak_force",
     "jankowski_damping_ratio",
@@ -45,11 +52,6 @@ __all__ = [
     "peak_force_ratio",
     "undamped_peak_force",
 ]
-
-CONTACT_MODELS = ("jankowski", "hertz", "hertzdamp", "linear")
-"""Names of the contact laws; their index is the code the integrator uses."""
-
-JANKOWSKI, HERTZ, HERTZDAMP, LINEAR = range(4)
 
 
 def jankowski_damping_ratio(restitution: float) -> float:
@@ -62,6 +64,73 @@ def linear_damping_ratio(restitution: float) -> float:
     """Damping ratio of the linear viscoelastic law for restitution e [-]."""
     log_e = math.log(restitution)
     return -log_e / math.sqrt(math.pi**2 + log_e**2)
+
+
+def _hertzdamp_factor(restitution: float) -> float:
+    """3 (1 - e^2) / 4 of Muthukumar & DesRoches' law [-]."""
+    return 0.75 * (1.0 - restitution**2)
+
+
+def _no_damping(restitution: float) -> float:
+    return 0.0
+
+
+@dataclass(frozen=True)
+class ContactLaw:
+    """One impact law of :data:`CONTACT_LAWS`.
+
+    Attributes
+    ----------
+    name : str
+        As written in a case file (``contact.model``).
+    code : int
+        The law's code in the compiled kernels (:data:`pounding.integrator.JANKOWSKI`, ...).
+    stiffness_exponent : float
+        Exponent of the penetration in the elastic term: 1.5 (Hertz), 1 (linear).
+    damping : callable
+        restitution e -> the law's damping parameter [-] (Eq. 5 for Jankowski).
+    reference : str
+        Where the law comes from.
+    """
+
+    name: str
+    code: int
+    stiffness_exponent: float
+    damping: Callable[[float], float]
+    reference: str
+
+    @property
+    def hertzian(self) -> bool:
+        """Whether the elastic term is Hertz's beta delta^1.5 (Eq. 13-14 then apply)."""
+        return self.stiffness_exponent == 1.5
+
+    @property
+    def peak_force_exponent(self) -> float:
+        """p of the undamped peak force's growth with the approach speed, F ~ v^p [-]:
+        1.2 for Hertz (Eq. 13 with v: delta_H ~ v^0.8), 1 for the linear law."""
+        return 1.2 if self.hertzian else 1.0
+
+
+CONTACT_LAWS = {
+    law.name: law
+    for law in (
+        ContactLaw("jankowski", integrator.JANKOWSKI, 1.5, jankowski_damping_ratio, "Jankowski (2005), Eq. 3-5"),
+        ContactLaw("hertz", integrator.HERTZ, 1.5, _no_damping, "Hertz, elastic"),
+        ContactLaw("hertzdamp", integrator.HERTZDAMP, 1.5, _hertzdamp_factor, "Muthukumar & DesRoches (2006)"),
+        ContactLaw("linear", integrator.LINEAR, 1.0, linear_damping_ratio, "Anagnostopoulos (1988)"),
+    )
+}
+"""The impact laws by name."""
+CONTACT_MODELS = tuple(CONTACT_LAWS)
+"""Names of the impact laws."""
+
+
+def contact_law(name: str, field: str = "model") -> ContactLaw:
+    """The law called ``name``; :class:`CaseError` naming ``field`` otherwise."""
+    try:
+        return CONTACT_LAWS[name]
+    except (KeyError, TypeError):
+        raise CaseError(field, f"unknown contact model {name!r}; allowed: {', '.join(CONTACT_MODELS)}") from None
 
 
 def hertz_peak_penetration(approach_velocity: float, stiffness: float, reduced_mass: float) -> float:
@@ -85,7 +154,7 @@ class Contact:
     levels : tuple of int
         Floor of building 1 and floor of building 2 that meet, counted from 1.
     model : str
-        One of ``CONTACT_MODELS``.
+        One of :data:`CONTACT_MODELS`.
     """
 
     gap: float
@@ -95,8 +164,7 @@ class Contact:
     model: str = "jankowski"
 
     def __post_init__(self):
-        if self.model not in CONTACT_MODELS:
-            raise CaseError("model", f"unknown contact model {self.model!r}; allowed: {', '.join(CONTACT_MODELS)}")
+        contact_law(self.model)
         for name in ("gap", "stiffness", "restitution"):
             value = getattr(self, name)
             if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value):
@@ -113,95 +181,95 @@ class Contact:
         object.__setattr__(self, "levels", levels)
 
     @property
+    def law(self) -> ContactLaw:
+        """The impact law, from :data:`CONTACT_LAWS`."""
+        return CONTACT_LAWS[self.model]
+
+    @property
     def model_code(self) -> int:
-        return CONTACT_MODELS.index(self.model)
+        """The law's code in the compiled kernels."""
+        return self.law.code
 
     @property
     def stiffness_exponent(self) -> float:
         """Exponent of the penetration in the elastic term: 1.5, or 1 for ``linear``."""
-        return 1.0 if self.model == "linear" else 1.5
+        return self.law.stiffness_exponent
 
     def damping_ratio(self) -> float:
-        """The law's impact damping ratio for ``restitution`` [-]
-        (Eq. 5 for ``jankowski``; 0 for ``hertz``)."""
-        if self.model == "jankowski":
-            return jankowski_damping_ratio(self.restitution)
-        if self.model == "linear":
-            return linear_damping_ratio(self.restitution)
-        if self.model == "hertzdamp":
-            return 0.75 * (1.0 - self.restitution**2)
-        return 0.0
-
-
-@njit(cache=True, nogil=True)
-def contact_force(model, delta, delta_dot, stiffness, damping_ratio, reduced_mass, approach_velocity):
-    """Pounding force [N] for penetration ``delta`` [m] and its rate [m/s], Eq. 3.
-
-    Parameters
-    ----------
-    model : int
-        Index of the law in ``CONTACT_MODELS``.
-    delta, delta_dot : float
-        Penetration and penetration rate.
-    stiffness : float
-        beta [N/m^1.5] (``linear``: k [N/m]).
-    damping_ratio : float
-        ``Contact.damping_ratio()``.
-    reduced_mass : float
-        m1 m2 / (m1 + m2) of the colliding floors [kg].
-    approach_velocity : float
-        Penetration rate at the onset of this impact [m/s] (``hertzdamp`` only).
-    """
-    if delta <= 0.0:
-        return 0.0
-    if model == LINEAR:
-        damping = 2.0 * damping_ratio * math.sqrt(stiffness * reduced_mass)
-        return max(stiffness * delta + damping * delta_dot, 0.0)
-    elastic = stiffness * delta * math.sqrt(delta)
-    if model == JANKOWSKI:
-        if delta_dot > 0.0:
-            damping = 2.0 * damping_ratio * math.sqrt(stiffness * math.sqrt(delta) * reduced_mass)
-            return elastic + damping * delta_dot
-        return elastic
-    if model == HERTZDAMP:
-        # damping_ratio holds 3 (1 - e^2) / 4; the law divides by the approach velocity.
-        return max(elastic * (1.0 + damping_ratio * delta_dot / max(approach_velocity, 1e-12)), 0.0)
-    return elastic
+        """The law's impact damping parameter for ``restitution`` [-]
+        (Eq. 5 for ``jankowski``; 3 (1 - e^2) / 4 for ``hertzdamp``; 0 for ``hertz``)."""
+        return self.law.damping(self.restitution)
 
 
 def undamped_peak_force(contact: Contact, approach_velocity, reduced_mass: float):
     """Peak force of an impact without energy loss [N]: Hertz, beta delta_H^1.5
     with delta_H of Eq. 13 (approach velocity in place of Eq. 13's separation
-    velocity, NOTES.md 10); ``linear``: v sqrt(k m)."""
-    if contact.model == "linear":
+    velocity, docs/errata.md, E11); ``linear``: v sqrt(k m)."""
+    if not contact.law.hertzian:
         return approach_velocity * math.sqrt(contact.stiffness * reduced_mass)
     return contact.stiffness * hertz_peak_penetration(approach_velocity, contact.stiffness, reduced_mass) ** 1.5
 
 
-@lru_cache(maxsize=1024)
+# --- one impact: the peak force against the buildings' own forces ------------
+
+_IMPACT_STEPS = 2000
+"""RK4 steps per time scale of :func:`~pounding.integrator.single_impact_peak`: the peak to about 1e-9."""
+_OPPOSED_SCALE = 1e-3
+_OPPOSED_GRID = np.linspace(0.0, math.asinh(1e6 / _OPPOSED_SCALE), 193)
+"""asinh(phi / 1e-3) on which the opposed peak-force ratio is tabulated: linear
+in phi near 0, logarithmic beyond (the ratio falls slowly, as a power of phi,
+for a large phi), phi up to 1e6."""
+
+
+@lru_cache(maxsize=256)
+def _opposed_table(model: str, restitution: float) -> np.ndarray:
+    contact = Contact(gap=0.0, stiffness=1.0, restitution=restitution, model=model)
+    unit = undamped_peak_force(contact, 1.0, 1.0)
+    ratios = np.empty(_OPPOSED_GRID.size)
+    for i, phi in enumerate(_OPPOSED_SCALE * np.sinh(_OPPOSED_GRID)):
+        ratios[i] = single_impact_peak(contact.model_code, contact.damping_ratio(), phi * unit, _IMPACT_STEPS) / unit
+    ratios.setflags(write=False)
+    return ratios
+
+
 def peak_force_ratio(model: str, restitution: float) -> float:
-    """Peak force of one impact over ``undamped_peak_force`` [-].
+    """Peak force of one impact of free masses over ``undamped_peak_force`` [-].
 
     Every law here is self-similar: scaling the penetration by the undamped
     peak and time by it over the approach velocity removes beta, the masses
     and the velocity, so the ratio depends on the law and the restitution
-    alone. It is found by running the time-history kernel on two free unit
-    masses meeting at unit speed (about 0.1 ms).
+    alone: :func:`opposed_peak_force_ratio` at phi = 0.
     """
-    from . import integrator as kernel  # imports this module: import late
+    return float(_opposed_table(model, float(restitution))[0])
 
-    contact = Contact(gap=0.0, stiffness=1.0, restitution=restitution, model=model)
-    # Two free floors of mass 2 (reduced mass 1), closing at unit speed.
-    free_floor = [2.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0]
-    floors = np.array([free_floor, free_floor])
-    contact_vector = np.array([contact.model_code, 0.0, 1.0, contact.damping_ratio(), 1.0])
-    summary = np.zeros(kernel.SUMMARY_COLUMNS)
-    no_history = np.empty(0)
-    kernel.integrate_record(
-        np.zeros(2), 10.0, np.array([0.0, 0.0, 0.5, -0.5, 0.0, 0.0]), floors, np.array([-1, -1]),
-        contact_vector, 0, 1, 1e-10, np.full(6, 1e-14), 1e3, summary, no_history, np.empty((0, 6)), no_history,
-    )
-    return float(summary[kernel.S_FORCE_MAX]) / undamped_peak_force(contact, 1.0, 1.0)
+
+def opposed_peak_force_ratio(model: str, restitution: float, phi):
+    """Peak force of one impact against a constant opposing force, over
+    ``undamped_peak_force`` [-].
+
+    During an impact (milliseconds) the storeys' restoring and damping forces
+    hardly change, so they act on the colliding floors as a constant force
+    f0 opposing the approach. With phi = f0 / F_H(v), F_H the undamped
+    (Hertz) peak, the law stays self-similar: the ratio depends on the law,
+    the restitution and phi alone. phi = 0 is :func:`peak_force_ratio`; the
+    ratio falls as phi grows (the approach is braked before it compresses the
+    contact): as phi^-1.5 for Hertz, more slowly for the damped laws, whose
+    damping force acts from the first touch. Tabulated once per law and
+    restitution by :func:`~pounding.integrator.single_impact_peak` for phi up
+    to 1e6, interpolated linearly in asinh(phi / 1e-3).
+
+    Parameters
+    ----------
+    model : str
+        One of :data:`CONTACT_MODELS`.
+    restitution : float
+    phi : array_like
+        Opposing force over the undamped peak force, >= 0 [-].
+    """
+    phi = np.asarray(phi, dtype=float)
+    if np.any(phi < 0.0) or not np.all(np.isfinite(phi)):
+        raise CaseError("phi", "must be finite numbers >= 0 (a force opposing the approach)")
+    return np.interp(np.arcsinh(phi / _OPPOSED_SCALE), _OPPOSED_GRID, _opposed_table(model, float(restitution)))
 
 
 def impact_peak_force(contact: Contact, approach_velocity, reduced_mass: float, opposing_force=0.0):
@@ -220,77 +288,3 @@ def impact_peak_force(contact: Contact, approach_velocity, reduced_mass: float, 
     moving = undamped > 0.0
     phi = np.divide(opposing, undamped, out=np.zeros(undamped.shape), where=moving)
     return np.where(moving, opposed_peak_force_ratio(contact.model, contact.restitution, phi), 0.0) * undamped
-
-
-# --- an impact against the buildings' own forces ----------------------------
-
-_OPPOSED_SCALE = 1e-3
-_OPPOSED_GRID = np.linspace(0.0, math.asinh(1e6 / _OPPOSED_SCALE), 193)
-"""asinh(phi / 1e-3) on which the opposed peak-force ratio is tabulated: linear
-in phi near 0, logarithmic beyond (the ratio falls slowly, as a power of phi,
-for a large phi), phi up to 1e6."""
-
-
-@njit(cache=True)
-def _opposed_peak(model, damping_ratio, opposing_force, steps_per_unit):
-    """Peak of F_c for x'' = -(F_c(x, x') + f0), x(0) = 0, x'(0) = 1: two
-    masses of reduced mass 1 meeting at unit speed under beta = 1 (k = 1 for
-    ``linear``) against a constant force f0. Classical RK4, stopped at the
-    largest penetration (F_c only falls after it). Plain loops: tiny sizes."""
-    time_scale = 1.0 / (1.0 + opposing_force)  # the impact lasts about this long
-    h = time_scale / steps_per_unit
-    x, rate, peak = 0.0, 1.0, 0.0
-    for _ in range(100 * steps_per_unit):
-        k1x, k1v = rate, -(contact_force(model, x, rate, 1.0, damping_ratio, 1.0, 1.0) + opposing_force)
-        x2, v2 = x + 0.5 * h * k1x, rate + 0.5 * h * k1v
-        k2x, k2v = v2, -(contact_force(model, x2, v2, 1.0, damping_ratio, 1.0, 1.0) + opposing_force)
-        x3, v3 = x + 0.5 * h * k2x, rate + 0.5 * h * k2v
-        k3x, k3v = v3, -(contact_force(model, x3, v3, 1.0, damping_ratio, 1.0, 1.0) + opposing_force)
-        x4, v4 = x + h * k3x, rate + h * k3v
-        k4x, k4v = v4, -(contact_force(model, x4, v4, 1.0, damping_ratio, 1.0, 1.0) + opposing_force)
-        x += h * (k1x + 2.0 * k2x + 2.0 * k3x + k4x) / 6.0
-        rate += h * (k1v + 2.0 * k2v + 2.0 * k3v + k4v) / 6.0
-        peak = max(peak, contact_force(model, x, rate, 1.0, damping_ratio, 1.0, 1.0))
-        if rate <= 0.0:
-            break
-    return peak
-
-
-@lru_cache(maxsize=256)
-def _opposed_table(model: str, restitution: float) -> np.ndarray:
-    contact = Contact(gap=0.0, stiffness=1.0, restitution=restitution, model=model)
-    unit = undamped_peak_force(contact, 1.0, 1.0)
-    ratios = np.empty(_OPPOSED_GRID.size)
-    for i, phi in enumerate(_OPPOSED_SCALE * np.sinh(_OPPOSED_GRID)):
-        ratios[i] = _opposed_peak(contact.model_code, contact.damping_ratio(), phi * unit, 1000) / unit
-    ratios.setflags(write=False)
-    return ratios
-
-
-def opposed_peak_force_ratio(model: str, restitution: float, phi):
-    """Peak force of one impact against a constant opposing force, over
-    ``undamped_peak_force`` [-].
-
-    During an impact (milliseconds) the storeys' restoring and damping forces
-    hardly change, so they act on the colliding floors as a constant force
-    f0 opposing the approach. With phi = f0 / F_H(v), F_H the undamped
-    (Hertz) peak, the law stays self-similar: the ratio depends on the law,
-    the restitution and phi alone. phi = 0 is :func:`peak_force_ratio`; the
-    ratio falls as phi grows (the approach is braked before it compresses the
-    contact): as phi^-1.5 for Hertz, more slowly for the damped laws, whose
-    damping force acts from the first touch. Tabulated once per law and
-    restitution (about 10 ms) for phi up to 1e6, interpolated linearly in
-    asinh(phi / 1e-3).
-
-    Parameters
-    ----------
-    model : str
-        One of ``CONTACT_MODELS``.
-    restitution : float
-    phi : array_like
-        Opposing force over the undamped peak force, >= 0 [-].
-    """
-    phi = np.asarray(phi, dtype=float)
-    if np.any(phi < 0.0) or not np.all(np.isfinite(phi)):
-        raise CaseError("phi", "must be finite numbers >= 0 (a force opposing the approach)")
-    return np.interp(np.arcsinh(phi / _OPPOSED_SCALE), _OPPOSED_GRID, _opposed_table(model, float(restitution)))

@@ -98,11 +98,6 @@ DEFAULT_TARGET_PROBABILITY = 0.95
 """Default target probability of *no* pounding during the record [-]."""
 
 _HISTORY_STEP = 0.1  # [s] time grid of the non-stationary variances
-_PEAK_EXPONENT = {"linear": 1.0}  # the others: Hertz, v^1.2
-
-
-def _exponent(contact: Contact) -> float:
-    return _PEAK_EXPONENT.get(contact.model, 1.2)
 
 
 @dataclass(frozen=True)
@@ -336,7 +331,7 @@ def paper_estimate(
     factor = davenport_peak_factor(rate, duration)  # Eq. 23 / 30
     velocity = factor * sigma
     contact = case.contact
-    if contact.model == "linear":
+    if not contact.law.hertzian:
         force = penetration = None
     else:
         # Eq. 13-14: the Hertz peak for the separation velocity e * delta_dot_e (NOTES.md 10), with
@@ -589,7 +584,7 @@ def _expected_force_maximum(
     against the gap's opposing force (increasing in v, as v^p)."""
     opposing = _opposing_forces(crossings, gaps, reduced_mass)[:, None]
     return _expected_maximum(
-        crossings, gaps, lambda v: impact_peak_force(contact, v, reduced_mass, opposing), _exponent(contact), motion, points
+        crossings, gaps, lambda v: impact_peak_force(contact, v, reduced_mass, opposing), contact.law.peak_force_exponent, motion, points
     )
 
 

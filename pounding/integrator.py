@@ -1,5 +1,12 @@
-"""The time-history kernel: two shear buildings with Bouc-Wen storeys and an
-impact element, under one ground-acceleration record (Eq. 10, 31-32, 38-39).
+"""The compiled mechanics: the contact laws (Eq. 3-5), the Bouc-Wen law
+(Eq. 2), and every compiled function that calls them: the time-history
+kernel of two shear buildings with Bouc-Wen storeys and an impact element
+under one ground-acceleration record (Eq. 10, 31-32, 38-39), one impact of
+two free masses, and a storey's hysteresis along a drift path.
+
+Numba's on-disk cache of a compiled function does not notice an edit to a
+compiled function it calls in another file, so every compiled call tree of
+the laws lives here, in one file.
 
 Numba-compiled (cached on disk, and releasing the GIL so that threads run
 records in parallel). The equations are integrated with the Dormand-Prince
@@ -22,8 +29,9 @@ import math
 import numpy as np
 from numba import njit
 
-from .contact import contact_force
-from .structures import bouc_wen_rate
+
+# Codes of the contact laws (the index of the law in ``contact.CONTACT_LAWS``).
+JANKOWSKI, HERTZ, HERTZDAMP, LINEAR = range(4)
 
 # Columns of the per-floor parameter table.
 MASS, STIFFNESS, DAMPING, ALPHA, BW_A, BW_BETA, BW_GAMMA, BW_N = range(8)
@@ -56,6 +64,74 @@ _A61, _A62, _A63, _A64, _A65 = 9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -
 _B1, _B3, _B4, _B5, _B6 = 35 / 384, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84
 # Error weights: 5th-order minus embedded 4th-order solution.
 _E1, _E3, _E4, _E5, _E6, _E7 = 71 / 57600, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40
+
+
+# --- the laws -----------------------------------------------------------------
+
+
+@njit(cache=True, nogil=True)
+def contact_force(model, delta, delta_dot, stiffness, damping_ratio, reduced_mass, approach_velocity):
+    """Pounding force [N] for penetration ``delta`` [m] and its rate [m/s], Eq. 3.
+
+    Parameters
+    ----------
+    model : int
+        Code of the law (:data:`JANKOWSKI`, ...).
+    delta, delta_dot : float
+        Penetration and penetration rate.
+    stiffness : float
+        beta [N/m^1.5] (``linear``: k [N/m]).
+    damping_ratio : float
+        ``Contact.damping_ratio()`` (``hertzdamp``: 3 (1 - e^2) / 4).
+    reduced_mass : float
+        m1 m2 / (m1 + m2) of the colliding floors [kg].
+    approach_velocity : float
+        Penetration rate at the onset of this impact [m/s] (``hertzdamp`` only).
+    """
+    if delta <= 0.0:
+        return 0.0
+    if model == LINEAR:
+        damping = 2.0 * damping_ratio * math.sqrt(stiffness * reduced_mass)
+        return max(stiffness * delta + damping * delta_dot, 0.0)
+    elastic = stiffness * delta * math.sqrt(delta)
+    if model == JANKOWSKI:
+        if delta_dot > 0.0:
+            damping = 2.0 * damping_ratio * math.sqrt(stiffness * math.sqrt(delta) * reduced_mass)
+            return elastic + damping * delta_dot
+        return elastic
+    if model == HERTZDAMP:
+        # damping_ratio holds 3 (1 - e^2) / 4; the law divides by the approach velocity.
+        return max(elastic * (1.0 + damping_ratio * delta_dot / max(approach_velocity, 1e-12)), 0.0)
+    return elastic
+
+
+@njit(cache=True, nogil=True)
+def bouc_wen_rate(velocity, z, A, beta, gamma, n):
+    """dz/dt of the Bouc-Wen model, Eq. 2 [m/s].
+
+    Parameters
+    ----------
+    velocity : float
+        Storey drift velocity [m/s].
+    z : float
+        Hysteretic displacement [m].
+    A, beta, gamma, n : float
+        Bouc-Wen parameters, ``beta`` and ``gamma`` in [1/m^n].
+    """
+    abs_z = abs(z)
+    # The common exponents without pow(): it dominates the kernel's cost otherwise.
+    if n == 1.0:
+        abs_z_n = abs_z
+    elif n == 2.0:
+        abs_z_n = abs_z * abs_z
+    else:
+        abs_z_n = abs_z**n
+    # |z|^(n-1) z = |z|^n sign(z)
+    signed = abs_z_n if z >= 0.0 else -abs_z_n
+    return A * velocity - beta * abs(velocity) * signed - gamma * velocity * abs_z_n
+
+
+# --- two buildings under one record -----------------------------------------
 
 
 @njit(cache=True, nogil=True)
@@ -346,3 +422,87 @@ def integrate_batch(records, time_step, y0, floors, below, contact, floor_1, flo
         )
         if summaries[r, S_STATUS] != OK:
             break
+
+
+# --- one impact of two free masses -------------------------------------------
+
+
+@njit(cache=True)
+def _impact_rates(model, damping_ratio, opposing_force, x, rate):
+    """x'' = -(F_c(x, x') + f0) for unit reduced mass and unit stiffness."""
+    return -(contact_force(model, x, rate, 1.0, damping_ratio, 1.0, 1.0) + opposing_force)
+
+
+@njit(cache=True)
+def single_impact_peak(model, damping_ratio, opposing_force, steps):
+    """Peak contact force of two masses of reduced mass 1 meeting at unit
+    speed under unit stiffness (beta = 1, or k = 1 for ``linear``), against a
+    constant force f0 = ``opposing_force`` opposing the approach:
+    x'' = -(F_c(x, x') + f0), x(0) = 0, x'(0) = 1, to the largest penetration
+    (the force only falls after it), and one step beyond.
+
+    Classical RK4 with ``steps`` steps per time scale 1 / (1 + f0); the first
+    tenth of it on a mesh graded as (k / m)^4, where the damped laws' force
+    grows as t^(1/4) from the touch; the peak is taken through the parabola
+    of the three samples around the largest (:func:`_peak_between`). 4000
+    steps give the peak to about 1e-8 (tests/test_contact.py)."""
+    time_scale = 1.0 / (1.0 + opposing_force)
+    graded = max(steps // 10, 4)
+    start = 0.1 * time_scale
+    h_uniform = time_scale / steps
+    t, x, rate = 0.0, 0.0, 1.0
+    t_back_2, f_back_2, t_back_1, f_back_1 = -2.0, -1.0, -1.0, -1.0
+    peak = 0.0
+    turned = False
+    for k in range(100 * steps + graded):
+        if k < graded:
+            h = start * (((k + 1) / graded) ** 4 - (k / graded) ** 4)
+        else:
+            h = h_uniform
+        k1x, k1v = rate, _impact_rates(model, damping_ratio, opposing_force, x, rate)
+        k2x = rate + 0.5 * h * k1v
+        k2v = _impact_rates(model, damping_ratio, opposing_force, x + 0.5 * h * k1x, k2x)
+        k3x = rate + 0.5 * h * k2v
+        k3v = _impact_rates(model, damping_ratio, opposing_force, x + 0.5 * h * k2x, k3x)
+        k4x = rate + h * k3v
+        k4v = _impact_rates(model, damping_ratio, opposing_force, x + h * k3x, k4x)
+        x += h * (k1x + 2.0 * k2x + 2.0 * k3x + k4x) / 6.0
+        rate += h * (k1v + 2.0 * k2v + 2.0 * k3v + k4v) / 6.0
+        t += h
+        force = contact_force(model, x, rate, 1.0, damping_ratio, 1.0, 1.0)
+        peak = max(peak, force)
+        if f_back_1 > 0.0 and f_back_2 > 0.0 and f_back_1 >= f_back_2 and f_back_1 >= force:
+            peak = max(peak, _peak_between(t_back_2, f_back_2, t_back_1, f_back_1, t, force))
+        t_back_2, f_back_2, t_back_1, f_back_1 = t_back_1, f_back_1, t, force
+        if rate <= 0.0:
+            if turned:  # one sample past the turn, for the parabola around a peak at it (Hertz)
+                break
+            turned = True
+    return peak
+
+
+# --- a storey along a drift path ---------------------------------------------
+
+
+@njit(cache=True)
+def hysteretic_path(drift, A, beta, gamma, n):
+    """z along a prescribed drift history from rest (Eq. 2 divided by the
+    positive time step: dz/du), by the trapezoidal predictor-corrector on each
+    increment [m]."""
+    z = np.zeros(drift.size)
+    for i in range(1, drift.size):
+        du = drift[i] - drift[i - 1]
+        slope_0 = bouc_wen_rate(du, z[i - 1], A, beta, gamma, n)
+        z_predicted = z[i - 1] + slope_0
+        slope_1 = bouc_wen_rate(du, z_predicted, A, beta, gamma, n)
+        z[i] = z[i - 1] + 0.5 * (slope_0 + slope_1)
+    return z
+
+
+@njit(cache=True)
+def bouc_wen_rates(velocity, z, A, beta, gamma, n):
+    """Eq. 2 (:func:`bouc_wen_rate`) at every sample [m/s]."""
+    out = np.empty(velocity.size)
+    for i in range(velocity.size):
+        out[i] = bouc_wen_rate(velocity[i], z[i], A, beta, gamma, n)
+    return out

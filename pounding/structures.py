@@ -6,7 +6,7 @@ mass. Its restoring force is q = alpha k u + (1 - alpha) k z (Eq. 36) on the
 storey drift u, with the hysteretic displacement z of Eq. 2. One storey is the
 paper's SDOF building (Eq. 1); two storeys the unequal-height model (Eq. 31,
 whose first line is garbled as printed: the drifts are the coordinates, as
-Eq. 32 and 36-39 write them; NOTES.md 9).
+Eq. 32 and 36-39 write them; docs/errata.md, E10).
 """
 
 from __future__ import annotations
@@ -15,10 +15,10 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from numba import njit
 from scipy.linalg import eigh
 
 from .errors import CaseError
+from .integrator import bouc_wen_rate, hysteretic_path
 
 __all__ = ["BoucWen", "Building", "Storey", "bouc_wen_rate", "hysteresis"]
 
@@ -75,32 +75,6 @@ class BoucWen:
     def yield_displacement(self) -> float:
         """(A / (beta + gamma))^(1/n) [m], Eq. 33: the bound of |z|."""
         return (self.A / (self.beta + self.gamma)) ** (1.0 / self.n)
-
-
-@njit(cache=True, nogil=True)
-def bouc_wen_rate(velocity, z, A, beta, gamma, n):
-    """dz/dt of the Bouc-Wen model, Eq. 2 [m/s].
-
-    Parameters
-    ----------
-    velocity : float
-        Storey drift velocity [m/s].
-    z : float
-        Hysteretic displacement [m].
-    A, beta, gamma, n : float
-        Bouc-Wen parameters, ``beta`` and ``gamma`` in [1/m^n].
-    """
-    abs_z = abs(z)
-    # The common exponents without pow(): it dominates the kernel's cost otherwise.
-    if n == 1.0:
-        abs_z_n = abs_z
-    elif n == 2.0:
-        abs_z_n = abs_z * abs_z
-    else:
-        abs_z_n = abs_z**n
-    # |z|^(n-1) z = |z|^n sign(z)
-    signed = abs_z_n if z >= 0.0 else -abs_z_n
-    return A * velocity - beta * abs(velocity) * signed - gamma * velocity * abs_z_n
 
 
 @dataclass(frozen=True)
@@ -231,18 +205,6 @@ def hysteresis(storey: Storey, drift) -> tuple[np.ndarray, np.ndarray]:
     """
     drift = np.asarray(drift, dtype=float)
     bw = storey.bouc_wen
-    z = _hysteretic_path(drift, bw.A, bw.beta, bw.gamma, bw.n)
+    z = hysteretic_path(drift, bw.A, bw.beta, bw.gamma, bw.n)
     return z, bw.alpha * storey.stiffness * drift + (1.0 - bw.alpha) * storey.stiffness * z
 
-
-@njit(cache=True)
-def _hysteretic_path(drift, A, beta, gamma, n):
-    z = np.zeros(drift.size)
-    for i in range(1, drift.size):
-        du = drift[i] - drift[i - 1]
-        # dz/du along the path: Eq. 2 divided by the (positive) time step.
-        slope_0 = bouc_wen_rate(du, z[i - 1], A, beta, gamma, n)
-        z_predicted = z[i - 1] + slope_0
-        slope_1 = bouc_wen_rate(du, z_predicted, A, beta, gamma, n)
-        z[i] = z[i - 1] + 0.5 * (slope_0 + slope_1)
-    return z

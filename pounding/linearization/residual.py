@@ -45,7 +45,7 @@ from numpy.polynomial.legendre import leggauss
 from scipy.linalg import expm
 from scipy.special import gamma as gamma_function
 
-from ..structures import bouc_wen_rate
+from ..integrator import bouc_wen_rates
 from .linear_system import LinearizedBuilding, StateSpace
 
 __all__ = [
@@ -415,15 +415,6 @@ def _response_kernel(omega, weights, values, left, right, spacing, spectrum):
     return out
 
 
-@njit(cache=True)
-def _bouc_wen_rates(velocity, z, A, beta, gamma, n):
-    """Eq. 2 (:func:`~pounding.structures.bouc_wen_rate`) at every sample."""
-    out = np.empty(velocity.size)
-    for i in range(velocity.size):
-        out[i] = bouc_wen_rate(velocity[i], z[i], A, beta, gamma, n)
-    return out
-
-
 def residual_response_sampled(
     model: StateSpace,
     linearized: tuple[LinearizedBuilding, ...],
@@ -505,7 +496,7 @@ def sampled_residual_paths(
             building = linearized[storey.building]
             law = building.building.storeys[storey.storey].bouc_wen
             velocity, z = state @ storey.rows[0], state @ storey.rows[1]
-            rate = _bouc_wen_rates(velocity, z, law.A, law.beta, law.gamma, law.n)
+            rate = bouc_wen_rates(velocity, z, law.A, law.beta, law.gamma, law.n)
             residual = rate - building.c_e[storey.storey] * velocity - building.k_e[storey.storey] * z
             forcing += np.outer(residual, hold[:, storey.input_state])
         driven = driven @ transition.T + forcing
