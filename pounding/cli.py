@@ -12,6 +12,9 @@ import math
 import sys
 from functools import partial
 
+from . import defaults
+from .arguments import whole_number
+
 EXIT_BAD_INPUT = 2
 
 _EPILOG = """examples:
@@ -25,21 +28,6 @@ _EPILOG = """examples:
   pounding simulate my_case.toml --records 50 --json
   pounding dashboard --port 5006
 """
-
-
-def whole_number(minimum: int):
-    """An argparse type: a whole number >= ``minimum``."""
-
-    def parse(text: str) -> int:
-        try:
-            value = int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"must be a whole number, got {text!r}") from None
-        if value < minimum:
-            raise argparse.ArgumentTypeError(f"must be >= {minimum}, got {value}")
-        return value
-
-    return parse
 
 
 _positive_int = whole_number(1)
@@ -82,9 +70,10 @@ def _parser() -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     simulate.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
-    simulate.add_argument("--records", type=_positive_int, default=100, help="number of records (default 100)")
+    simulate.add_argument("--records", type=_positive_int, default=defaults.RECORDS, help=f"number of records (default {defaults.RECORDS})")
     simulate.add_argument("--seed", type=_non_negative_int, default=0, help="seed of the study (default 0)")
-    simulate.add_argument("--tolerance", type=float, default=1e-6, help="relative tolerance of the integrator (default 1e-6)")
+    simulate.add_argument("--tolerance", type=float, default=defaults.INTEGRATOR_TOLERANCE,
+                          help=f"relative tolerance of the integrator (default {defaults.INTEGRATOR_TOLERANCE:g})")
     simulate.add_argument("--json", action="store_true", help="print one JSON object (SI units) instead of a table")
     simulate.add_argument("--design-gap", type=float, metavar="P", default=None,
                           help="instead, the gap for probability P of no pounding, in (0, 1): a record pounds at a gap "
@@ -100,14 +89,15 @@ def _parser() -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     estimate.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
-    estimate.add_argument("--target-probability", type=float, default=0.95,
-                          help="target probability of no pounding during the record, in (0, 1) (default 0.95)")
+    estimate.add_argument("--target-probability", type=float, default=defaults.TARGET_PROBABILITY,
+                          help=f"target probability of no pounding during the record, in (0, 1) (default {defaults.TARGET_PROBABILITY:g})")
     estimate.add_argument("--paper-variance", choices=("eq28", "exact"), default="eq28",
                           help="the paper's method under an envelope: sigma_V(t) by Eq. 28 (default, as published) "
                           "or by the exact time-varying covariance")
-    estimate.add_argument("--michaelov-n1", type=float, default=3.0, metavar="N1",
+    estimate.add_argument("--michaelov-n1", type=float, default=defaults.MICHAELOV_N1, metavar="N1",
                           help="the paper's method under an envelope: order n1 of the moments of Michaelov's equivalent "
-                          "stationary process, Eq. 29, in [0.5, 20] (default 3, as the paper)")
+                          "stationary process, Eq. 29, in [{:g}, {:g}] (default {:g}, as the paper)".format(
+                              *defaults.MICHAELOV_N1_RANGE, defaults.MICHAELOV_N1))
     estimate.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
 
     validate = commands.add_parser(
@@ -119,8 +109,10 @@ def _parser() -> argparse.ArgumentParser:
         epilog="examples:\n  pounding validate\n  pounding validate --records 100 --json > tables.json",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    validate.add_argument("--records", type=_positive_int, default=300, help="Monte Carlo records per case (default 300)")
-    validate.add_argument("--seed", type=_non_negative_int, default=1, help="seed of the studies (default 1)")
+    validate.add_argument("--records", type=_positive_int, default=defaults.VALIDATION_RECORDS,
+                          help=f"Monte Carlo records per case (default {defaults.VALIDATION_RECORDS})")
+    validate.add_argument("--seed", type=_non_negative_int, default=defaults.VALIDATION_SEED,
+                          help=f"seed of the studies (default {defaults.VALIDATION_SEED})")
     validate.add_argument("--grid", action="store_true",
                           help="instead of the paper's tables: both estimators against Monte Carlo on the 33-case accuracy grid "
                           "(a Markdown table)")
@@ -141,7 +133,8 @@ def _parser() -> argparse.ArgumentParser:
     report.add_argument("-o", "--output", required=True, help="the HTML file to write")
     report.add_argument("--records", type=_non_negative_int, default=0,
                         help="Monte Carlo records to compare with (default 0: none)")
-    report.add_argument("--seed", type=_non_negative_int, default=1, help="seed of the Monte Carlo study (default 1)")
+    report.add_argument("--seed", type=_non_negative_int, default=defaults.REPORT_SEED,
+                        help=f"seed of the Monte Carlo study (default {defaults.REPORT_SEED})")
     report.add_argument("--design-gap", type=float, metavar="P", default=None,
                         help="also the Monte Carlo gap for probability P of no pounding, in (0, 1), from the free motion of "
                         "the same --records (needed); P is then the target of the closed-form gap too")
@@ -196,7 +189,7 @@ def _format_force(newtons: float) -> str:
 def _simulate(args) -> int:
     from .case import load_case
     from .errors import ConvergenceError, check_probability
-    from .estimator import DEFAULT_TARGET_PROBABILITY, estimate
+    from .estimator import estimate
     from .simulation import Settings, design_gap, simulate
 
     if args.design_gap is not None:
@@ -215,7 +208,7 @@ def _simulate(args) -> int:
         if bar is not None:
             bar.close()
     try:  # a few ms beside seconds of simulation: the two methods side by side
-        closed_form, failure = estimate(case, target_probability=args.design_gap or DEFAULT_TARGET_PROBABILITY), None
+        closed_form, failure = estimate(case, target_probability=args.design_gap or defaults.TARGET_PROBABILITY), None
     except ConvergenceError as error:  # the Monte Carlo stands without it
         closed_form, failure = None, str(error)
     if args.design_gap is not None:
@@ -275,7 +268,7 @@ def _print_design_gap(case, result, closed_form, failure, args) -> int:
     if closed_form is None:
         print(f"closed form     n/a: {failure}")
     else:
-        print(f"closed form     {100 * required:.2f} cm   (pounding estimate; docs/estimator.md gives how far it was measured off)")
+        print(f"closed form     {100 * required:.2f} cm   (pounding estimate; docs/accuracy.md gives how far it was measured off)")
     return 0
 
 
@@ -412,7 +405,6 @@ def _report(args) -> int:
 
     from .case import load_case
     from .errors import CaseError, check_probability
-    from .estimator import DEFAULT_TARGET_PROBABILITY
     from .simulation import design_gap, simulate
 
     if args.design_gap is not None:
@@ -427,7 +419,7 @@ def _report(args) -> int:
     from .report import MonteCarloPoint, compute_snapshot, write_report
 
     # The estimate first (milliseconds): if it cannot be made, no simulation is wasted.
-    snapshot = compute_snapshot(case, target_probability=args.design_gap or DEFAULT_TARGET_PROBABILITY)
+    snapshot = compute_snapshot(case, target_probability=args.design_gap or defaults.TARGET_PROBABILITY)
 
     def run(study):
         bar = _progress_bar(args.records, sys.stderr.isatty())

@@ -1,12 +1,13 @@
 """Stationary response of a linearized pair at its contact floors
-(Eq. 15-18, 22, 24-25).
+(Eq. 15-18, 22, 24-25): :class:`ContactResponse`, the buildings' frequency
+response functions, and the spectral grid and moments.
 
 Two independent routes give the covariance of the contact floors'
 displacements, velocities and accelerations (all relative to the ground):
 
-- :func:`response_lyapunov`, the default and fast one: the stationary
-  covariance of the joint state-space model (both buildings and the ground
-  filter) from the Lyapunov equation;
+- :attr:`pounding.pair.LinearizedPair.stationary_response`, the default and
+  fast one: the stationary covariance of the joint state-space model (both
+  buildings and the ground filter) from the Lyapunov equation;
 - :func:`response_frequency`: integrals over frequency of the complex
   frequency response functions (FRFs) of the linearized buildings against
   the ground spectrum, E[Y1 Y2] = int H1 conj(H2) S_g d omega over (-inf, inf),
@@ -22,38 +23,23 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
 from scipy.integrate import quad_vec
 
-from .linearization import (
-    LinearizedBuilding,
-    StateSpace,
-    linearize_pair,
-    pair_state_space,
-)
-from .linearization.residual import residual_response
+from .linearization import LinearizedBuilding, StateSpace
 
 __all__ = [
     "OUTPUTS",
     "ContactResponse",
     "FloorStatistics",
-    "contact_covariance_history",
-    "contact_floor_bandwidths",
-    "contact_floor_frfs",
     "contact_output_matrix",
     "floor_response_and_receptance",
-    "floor_statistics",
     "frequency_response",
-    "psd_relative_velocity",
-    "response",
+    "relative_displacement_psd",
     "response_frequency",
-    "response_lyapunov",
-    "response_with_residual",
     "spectral_grid",
     "spectral_moments",
     "spectral_weights",
     "trapezoid_weights",
-    "vanmarcke_bandwidth",
 ]
 
 OUTPUTS = ("x1", "x2", "v1", "v2", "a1", "a2")
@@ -168,13 +154,10 @@ class ContactResponse:
         return float(cov / (self.sigma_relative_displacement * self.sigma_relative_velocity))
 
 
-def _contact_floors(case) -> tuple[int, int]:
-    return tuple(level - 1 for level in case.contact.levels)
-
-
-def contact_output_matrix(case, model: StateSpace) -> np.ndarray:
-    """Rows mapping the state of the pair model to :data:`OUTPUTS`, (6, n)."""
-    f1, f2 = _contact_floors(case)
+def contact_output_matrix(floors: tuple[int, int], model: StateSpace) -> np.ndarray:
+    """Rows mapping the state of the pair model to :data:`OUTPUTS`, (6, n); ``floors``: the
+    contact floor of each building counted from 0."""
+    f1, f2 = floors
     return np.array(
         [
             model.displacement[0][f1],
@@ -186,56 +169,6 @@ def contact_output_matrix(case, model: StateSpace) -> np.ndarray:
         ]
     )
 
-
-def _linearized(case, linearized):
-    return linearize_pair(case) if linearized is None else tuple(linearized)
-
-
-def response_lyapunov(case, linearized=None, model: StateSpace | None = None) -> ContactResponse:
-    """Contact-floor response by the Lyapunov equation of the joint model.
-
-    The pair and the ground filter form x' = A x + b w with w white noise of
-    two-sided intensity G0; P solves A P + P A^T + 2 pi G0 b b^T = 0 and the
-    outputs' covariance is C P C^T (Eq. 16-18, 25 without frequency integrals).
-
-    Parameters
-    ----------
-    case : Case
-        A non-stationary case is treated by its stationary spectrum (sigma_inf).
-    linearized : tuple of two LinearizedBuilding, optional
-        From :func:`~pounding.linearization.linearize_pair`; computed when omitted.
-    model : StateSpace, optional
-        The pair's :func:`~pounding.linearization.pair_state_space`, if built already.
-    """
-    if model is None:
-        model = pair_state_space(case, _linearized(case, linearized))
-    outputs = contact_output_matrix(case, model)
-    return ContactResponse(case.contact.levels, outputs @ model.covariance() @ outputs.T, "lyapunov")
-
-
-def response_with_residual(case, linearized=None, model: StateSpace | None = None, linear: ContactResponse | None = None) -> ContactResponse:
-    """Contact-floor response of the linearized pair plus its response to the
-    linearization residual of the yielding storeys, an input independent of
-    the ground motion to second order (one pass, see
-    :mod:`pounding.linearization.residual`). Equal to :func:`response_lyapunov`
-    for elastic buildings.
-
-    Parameters
-    ----------
-    case : Case
-    linearized : tuple of two LinearizedBuilding, optional
-    model : StateSpace, optional
-        The pair's :func:`~pounding.linearization.pair_state_space`, if built already.
-    linear : ContactResponse, optional
-        :func:`response_lyapunov` of the same pair, if computed already.
-    """
-    linearized = _linearized(case, linearized)
-    if model is None:
-        model = pair_state_space(case, linearized)
-    if linear is None:
-        linear = response_lyapunov(case, linearized, model)
-    residual = residual_response(model, linearized, contact_output_matrix(case, model))
-    return ContactResponse(case.contact.levels, linear.covariance + residual, "lyapunov+residual")
 
 
 def _storey_stiffness(linearized: LinearizedBuilding, w: np.ndarray) -> np.ndarray:
@@ -306,14 +239,14 @@ def floor_response_and_receptance(linearized: LinearizedBuilding, omega, floor: 
 
 def _contact_frf(case, linearized, omega) -> np.ndarray:
     """FRFs of the OUTPUTS per unit ground acceleration, shape omega.shape + (6,)."""
-    f1, f2 = _contact_floors(case)
+    f1, f2 = (level - 1 for level in case.contact.levels)
     h1 = frequency_response(linearized[0], omega)[..., f1]
     h2 = frequency_response(linearized[1], omega)[..., f2]
     iw = 1j * np.asarray(omega, dtype=float)
     return np.stack([h1, h2, iw * h1, iw * h2, iw**2 * h1, iw**2 * h2], axis=-1)
 
 
-def response_frequency(case, linearized=None, rtol: float = 1e-10) -> ContactResponse:
+def response_frequency(case, linearized, model: StateSpace, rtol: float = 1e-10) -> ContactResponse:
     """Contact-floor response by frequency-domain integrals (Eq. 17-18, 25).
 
     E[Y_i Y_j] = int_(-inf)^(inf) H_i conj(H_j) S_g d omega
@@ -321,19 +254,19 @@ def response_frequency(case, linearized=None, rtol: float = 1e-10) -> ContactRes
     since H(-w) = conj(H(w)); velocities and accelerations have FRFs i w H and
     -w^2 H. Integrated adaptively (``scipy.integrate.quad_vec``) over [0, inf)
     with breakpoints at the natural frequencies of the linearized pair and the
-    filter. A reference for :func:`response_lyapunov`, not fast (~0.1 s).
+    filter. A reference for the Lyapunov route, not fast (~0.1 s).
 
     Parameters
     ----------
     case : Case
-    linearized : tuple of two LinearizedBuilding, optional
+    linearized : tuple of two LinearizedBuilding
+    model : StateSpace
+        Their :func:`~pounding.linearization.pair_state_space` (for the poles).
     rtol : float
         Relative tolerance of the integration (max-norm over the outputs, each
         scaled to acceleration units).
     """
-    linearized = _linearized(case, linearized)
     spectrum = case.excitation.spectrum
-    model = pair_state_space(case, linearized)
     poles = np.linalg.eigvals(model.matrix)
     points = np.unique(np.concatenate([np.abs(poles.imag), np.abs(poles)]))
     points = points[points > 0.0]
@@ -351,33 +284,6 @@ def response_frequency(case, linearized=None, rtol: float = 1e-10) -> ContactRes
     covariance = np.empty((6, 6))
     covariance[rows, cols] = covariance[cols, rows] = 2.0 * upper
     return ContactResponse(case.contact.levels, covariance / np.outer(scale, scale), "frequency")
-
-
-def response(case, linearized=None, method: str = "lyapunov") -> ContactResponse:
-    """Contact-floor response by ``method``: ``"lyapunov"`` (default, fast) or ``"frequency"``."""
-    if method == "lyapunov":
-        return response_lyapunov(case, linearized)
-    if method == "frequency":
-        return response_frequency(case, linearized)
-    raise ValueError(f"method must be 'lyapunov' or 'frequency', got {method!r}")
-
-
-def psd_relative_velocity(case, linearized, omega) -> np.ndarray:
-    """Two-sided PSD of the relative velocity V = v1 - v2 at the contact floors,
-    w^2 |H1 - H2|^2 S_g(w) [m^2/s], whose integral over (-inf, inf) is
-    sigma_V^2 (Eq. 16-18).
-
-    Parameters
-    ----------
-    case : Case
-    linearized : tuple of two LinearizedBuilding, or None to compute it
-    omega : array_like
-        Circular frequencies [rad/s].
-    """
-    linearized = _linearized(case, linearized)
-    omega = np.asarray(omega, dtype=float)
-    y = _contact_frf(case, linearized, omega)
-    return np.abs(y[..., _V1] - y[..., _V2]) ** 2 * case.excitation.spectrum.psd(omega)
 
 
 @dataclass(frozen=True, eq=False)
@@ -398,60 +304,6 @@ class FloorStatistics:
     drift: tuple[np.ndarray, np.ndarray]
     drift_velocity: tuple[np.ndarray, np.ndarray]
     hysteretic: tuple[np.ndarray, np.ndarray]
-
-
-def floor_statistics(case, linearized=None) -> FloorStatistics:
-    """Standard deviations of every floor and storey of the linearized pair (Lyapunov route)."""
-    linearized = _linearized(case, linearized)
-    model = pair_state_space(case, linearized)
-    covariance = model.covariance()
-
-    def sigma(rows):
-        return np.sqrt(np.einsum("ij,jk,ik->i", rows, covariance, rows))
-
-    pair = (0, 1)
-    return FloorStatistics(
-        tuple(sigma(model.displacement[b]) for b in pair),
-        tuple(sigma(model.velocity[b]) for b in pair),
-        tuple(sigma(model.drift(b)) for b in pair),
-        tuple(sigma(model.drift_velocity(b)) for b in pair),
-        tuple(sigma(model.hysteretic[b]) for b in pair),
-    )
-
-
-def contact_covariance_history(case, linearized=None, times=None, modulation: str = "bedrock", model: StateSpace | None = None) -> np.ndarray:
-    """Time-varying covariance of :data:`OUTPUTS` under the case's envelope,
-    from rest, by :func:`pounding.peaks.time_varying_covariance`.
-
-    The buildings keep their stationary linearization (the paper's sigma_inf
-    approach); only the excitation is modulated.
-
-    Parameters
-    ----------
-    case : Case
-        Its ``excitation.envelope`` (None: constant 1) modulates the motion.
-    linearized : tuple of two LinearizedBuilding, optional
-    times : array_like, optional
-        Increasing times from the onset [s]; default 0 to the record duration
-        every 0.05 s.
-    modulation : str
-        ``"bedrock"`` (modulated white noise, fast) or ``"ground"`` (Eq. 8, as
-        the records are generated); see :func:`~pounding.peaks.time_varying_covariance`.
-    model : StateSpace, optional
-        The pair's :func:`~pounding.linearization.pair_state_space`, if built already.
-
-    Returns
-    -------
-    ndarray, (n_times, 6, 6)
-    """
-    from .peaks import time_varying_covariance
-
-    if times is None:
-        times = np.arange(0.0, case.excitation.duration + 1e-9, 0.05)
-    if model is None:
-        model = pair_state_space(case, _linearized(case, linearized))
-    outputs = contact_output_matrix(case, model)
-    return time_varying_covariance(model, case.excitation.envelope, times, modulation=modulation, outputs=outputs)
 
 
 _SPECTRAL_GRID = np.geomspace(1e-4, 2.0e3, 2001)
@@ -492,53 +344,9 @@ def spectral_moments(spectrum, orders=(0, 1, 2)) -> np.ndarray:
     return (_SPECTRAL_GRID ** np.asarray(orders, dtype=float)[:, None] * _SPECTRAL_WEIGHTS) @ spectrum
 
 
-def contact_floor_frfs(case, linearized=None) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
-    """Each contact floor's FRF per unit ground acceleration [s^2] and its
-    receptance [m/N] on :func:`spectral_grid` (:func:`floor_response_and_receptance`),
-    building 1 then building 2."""
-    linearized = _linearized(case, linearized)
-    omega = spectral_grid()
-    return tuple(floor_response_and_receptance(lb, omega, floor) for lb, floor in zip(linearized, _contact_floors(case)))
-
-
-def contact_floor_bandwidths(case, linearized=None, floor_frfs=None) -> np.ndarray:
-    """Vanmarcke's q of each contact floor's displacement x1, x2 [-] (as
-    :func:`bandwidth_relative_displacement` for X); ``floor_frfs``: from
-    :func:`contact_floor_frfs`, if computed already."""
-    if floor_frfs is None:
-        floor_frfs = contact_floor_frfs(case, linearized)
-    ground = case.excitation.spectrum.psd(spectral_grid())
-    return np.array([vanmarcke_bandwidth(*spectral_moments(2.0 * np.abs(frf) ** 2 * ground)) for frf, _ in floor_frfs])
-
-
-def relative_displacement_psd(case, linearized, omega, floor_frfs=None) -> np.ndarray:
-    """One-sided PSD G_X = 2 S_X of the relative displacement X = x1 - x2 at the
-    contact floors under the ground spectrum [m^2 s/rad]; ``floor_frfs``: the
-    contact floors' FRFs per unit ground acceleration, if computed already."""
-    if floor_frfs is None:
-        floor_frfs = [frequency_response(lb, omega)[..., floor] for lb, floor in zip(linearized, _contact_floors(case))]
-    h1, h2 = floor_frfs
-    return 2.0 * np.abs(h1 - h2) ** 2 * case.excitation.spectrum.psd(omega)
-
-
-def spectral_moments_relative_displacement(case, linearized=None, orders=(0, 1, 2)) -> np.ndarray:
-    """One-sided spectral moments lambda_k = int_0^inf w^k G_X(w) dw of the
-    relative displacement X = x1 - x2 at the contact floors (G_X = 2 S_X).
-
-    lambda_0 = sigma_X^2 and lambda_2 = sigma_V^2; lambda_1, which no
-    covariance gives, sets the bandwidth. Integrated on :func:`spectral_grid`.
-    """
-    linearized = _linearized(case, linearized)
-    return spectral_moments(relative_displacement_psd(case, linearized, spectral_grid()), orders)
-
-
-@njit(cache=True)
-def vanmarcke_bandwidth(lambda_0, lambda_1, lambda_2):
-    """Vanmarcke's q = sqrt(1 - lambda_1^2 / (lambda_0 lambda_2)) from one-sided spectral moments [-]."""
-    return math.sqrt(max(1.0 - lambda_1 * lambda_1 / (lambda_0 * lambda_2), 0.0))
-
-
-def bandwidth_relative_displacement(case, linearized=None) -> float:
-    """Vanmarcke's bandwidth q = sqrt(1 - lambda_1^2 / (lambda_0 lambda_2)) of
-    X [-]: near 0 for a narrow-band (one-frequency) motion, up to 1 for a broad one."""
-    return float(vanmarcke_bandwidth(*spectral_moments_relative_displacement(case, linearized)))
+def relative_displacement_psd(h1: np.ndarray, h2: np.ndarray, ground_psd: np.ndarray) -> np.ndarray:
+    """One-sided PSD G_X = 2 S_X of the relative displacement X = x1 - x2
+    [m^2 s/rad] from the contact floors' FRFs per unit ground acceleration
+    ``h1``, ``h2`` [s^2] and the two-sided ground PSD [m^2/s^3], at the same
+    frequencies (Eq. 25's integrand)."""
+    return 2.0 * np.abs(h1 - h2) ** 2 * ground_psd

@@ -17,6 +17,7 @@ import numpy as np
 from scipy.special import bdtr, stdtrit  # binomial CDF, Student t quantile; scipy.stats costs a second to import
 
 from . import integrator as kernel
+from . import defaults
 from .case import Case
 from .errors import CaseError, SimulationError, check_probability
 from .excitation import ground_accelerations
@@ -63,7 +64,7 @@ class Settings:
         Records per task (progress is reported per chunk).
     """
 
-    tolerance: float = 1e-6
+    tolerance: float = defaults.INTEGRATOR_TOLERANCE
     displacement_limit: float = 10.0
     workers: int | None = None
     chunk_size: int = 8
@@ -235,7 +236,7 @@ def _check_records(records: int, seed: int, first_record: int) -> None:
 
 def simulate(
     case: Case,
-    records: int = 100,
+    records: int = defaults.RECORDS,
     seed: int = 0,
     settings: Settings | None = None,
     progress: Callable[[int, int], None] | None = None,
@@ -393,8 +394,8 @@ def records_for_bound(target_probability: float) -> int:
 
 def design_gap(
     case: Case,
-    target_probability: float = 0.95,
-    records: int = 400,
+    target_probability: float = defaults.TARGET_PROBABILITY,
+    records: int = defaults.DESIGN_GAP_RECORDS,
     seed: int = 0,
     settings: Settings | None = None,
     progress: Callable[[int, int], None] | None = None,

@@ -8,20 +8,14 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from ..errors import ConvergenceError
 from ..excitation import KanaiTajimi
 from ..structures import Building
 from .linear_system import LinearizedBuilding, state_space
-from .lyapunov import (
-    _DENSE_LYAPUNOV_LIMIT,
-    _lyapunov_maps,
-    _lyapunov_upper,
-    _solve,
-    lyapunov_covariance,
-)
-from .wen import _coefficients, _wen_constants
+from .kernels import iteration_moments, mixing_step
+from .lyapunov import DENSE_LYAPUNOV_LIMIT, lyapunov_covariance, lyapunov_maps
+from .wen import coefficients_from_statistics, wen_constants
 
 DEFAULT_TOLERANCE = 1e-8
 """Relative change of c_e and k_e between iterates that ends the iteration [-]."""
@@ -33,37 +27,6 @@ DEFAULT_MEMORY = 2
 
 
 # --- the fixed-point iteration -----------------------------------------------
-
-
-@njit(cache=True)
-def _second_moments(matrix, rhs, rows, cols, left, right):
-    """left_i^T P right_i for the stationary covariance P of ``matrix`` under
-    the noise whose negated upper triangle is ``rhs``."""
-    upper = _lyapunov_upper(matrix, rhs, rows, cols)
-    n = matrix.shape[0]
-    covariance = np.empty((n, n))
-    for e in range(rows.size):
-        covariance[rows[e], cols[e]] = upper[e]
-        covariance[cols[e], rows[e]] = upper[e]
-    out = np.zeros(left.shape[0])
-    for i in range(left.shape[0]):
-        for j in range(n):
-            if left[i, j] != 0.0:
-                for k in range(n):
-                    out[i] += left[i, j] * covariance[j, k] * right[i, k]
-    return out
-
-
-@njit(cache=True)
-def _iteration_moments(matrix, z_states, velocity_start, drift_rows, c_e, k_e, rhs, rows, cols, left, right):
-    """Put (c_e, k_e) of the yielding storeys into the state matrix (in place)
-    and return their second moments, see :class:`_StoreyMoments`."""
-    for s in range(z_states.size):
-        row = z_states[s]
-        for j in range(drift_rows.shape[1]):
-            matrix[row, velocity_start + j] = c_e[s] * drift_rows[s, j]
-        matrix[row, row] = k_e[s]
-    return _second_moments(matrix, rhs, rows, cols, left, right)
 
 
 class _StoreyMoments:
@@ -81,14 +44,14 @@ class _StoreyMoments:
         self.velocity_start = N
         self.drift_rows = np.ascontiguousarray((np.eye(N) - np.eye(N, k=-1))[index])
         self.matrix = model.matrix.copy()
-        self.rows, self.cols = _lyapunov_maps(model.size)
+        self.rows, self.cols = lyapunov_maps(model.size)
         noise = model.noise_covariance
         self.rhs = np.ascontiguousarray(-noise[self.rows, self.cols])
         velocity, z = model.drift_velocity(0)[index], model.hysteretic[0][index]
         self.left = np.concatenate([velocity, z, velocity])
         self.right = np.concatenate([velocity, z, z])
         self.noise = noise
-        self.dense = model.size <= _DENSE_LYAPUNOV_LIMIT
+        self.dense = model.size <= DENSE_LYAPUNOV_LIMIT
 
         # The elastic start: substitute z = A u = A (drift rows) d, drop the z states.
         keep = np.concatenate([np.arange(2 * N), np.arange(2 * N + count, model.size)])
@@ -103,7 +66,7 @@ class _StoreyMoments:
         """(Var udot, Var z, Cov(udot, z)) of the yielding storeys, concatenated;
         NaN if the Lyapunov equation is singular."""
         if self.dense:
-            return _iteration_moments(
+            return iteration_moments(
                 self.matrix, self.z_states, self.velocity_start, self.drift_rows, c_e, k_e, self.rhs, self.rows, self.cols, self.left, self.right
             )
         N = self.velocity_start
@@ -119,72 +82,6 @@ class _StoreyMoments:
 def _quadratic_forms(left: np.ndarray, covariance: np.ndarray, right: np.ndarray) -> np.ndarray:
     """left_i^T P right_i for every row i."""
     return np.einsum("ij,jk,ik->i", left, covariance, right)
-
-
-@njit(cache=True)
-def _mixing_step(x, residual, history_x, history_f, filled, relaxation, count):
-    """Under-relaxed fixed-point step with Anderson mixing (Walker & Ni 2011).
-
-    ``history_x`` and ``history_f`` hold the last ``filled`` iterates and
-    residuals (updated in place). The step is shortened until c_e > 0 and
-    k_e < 0 (the first ``count`` entries of x are c_e, the next k_e).
-    Returns the step (all zeros if no admissible step exists) and the new
-    ``filled``. Plain loops: numba compiles array expressions and BLAS calls
-    slowly (seconds), and the sizes here are tiny.
-    """
-    depth, size = history_x.shape
-    if filled == depth:
-        for i in range(depth - 1):
-            for j in range(size):
-                history_x[i, j] = history_x[i + 1, j]
-                history_f[i, j] = history_f[i + 1, j]
-        filled -= 1
-    for j in range(size):
-        history_x[filled, j] = x[j]
-        history_f[filled, j] = residual[j]
-    filled += 1
-    step = np.empty(size)
-    for j in range(size):
-        step[j] = relaxation * residual[j]
-    columns = filled - 1
-    if columns > 0:
-        # The combination of the last differences that best cancels the
-        # residual (least squares by the normal equations, lightly
-        # regularized against repeated residuals), applied to the iterates
-        # and residuals.
-        gram = np.zeros((columns, columns))
-        projection = np.zeros(columns)
-        for a in range(columns):
-            for j in range(size):
-                d_fa = history_f[a + 1, j] - history_f[a, j]
-                projection[a] += d_fa * residual[j]
-                for b in range(columns):
-                    gram[a, b] += d_fa * (history_f[b + 1, j] - history_f[b, j])
-        trace = 0.0
-        for a in range(columns):
-            trace += gram[a, a]
-        for a in range(columns):
-            gram[a, a] += 1e-12 * trace + 1e-300
-        weights = _solve(gram, projection)
-        finite = True
-        for a in range(columns):
-            finite = finite and math.isfinite(weights[a])
-        if finite:
-            for a in range(columns):
-                for j in range(size):
-                    d_x = history_x[a + 1, j] - history_x[a, j]
-                    d_f = history_f[a + 1, j] - history_f[a, j]
-                    step[j] -= (d_x + relaxation * d_f) * weights[a]
-    for _ in range(60):
-        admissible = True
-        for i in range(count):
-            if not (x[i] + step[i] > 0.0 and x[count + i] + step[count + i] < 0.0):
-                admissible = False
-        if admissible:
-            return step, filled
-        for j in range(size):
-            step[j] *= 0.5
-    return np.zeros(size), filled
 
 
 def linearize(
@@ -256,7 +153,7 @@ def linearize(
         return elastic
     index = np.flatnonzero(yielding)
     laws = [storeys[i].bouc_wen for i in index]
-    constants = [tuple(float(c) for c in _wen_constants(law.n)) for law in laws]
+    constants = [tuple(float(c) for c in wen_constants(law.n)) for law in laws]
     # k_e is converged relative to itself, or to 1e-6 of the storey's
     # frequency when smaller: near the elastic limit k_e -> 0 and the
     # Lyapunov equation becomes ill-conditioned (a mode decaying as k_e).
@@ -281,7 +178,7 @@ def linearize(
             sigma_velocity, sigma_z = math.sqrt(var_velocity), math.sqrt(var_z)
             rho = min(1.0, max(-1.0, cross / (sigma_velocity * sigma_z)))
             sigma[:, s] = sigma_velocity, sigma_z, rho
-            c_e, k_e = _coefficients(law.A, law.beta, law.gamma, (sigma_velocity, sigma_z, rho), constants[s])
+            c_e, k_e = coefficients_from_statistics(law.A, law.beta, law.gamma, (sigma_velocity, sigma_z, rho), constants[s])
             if not (math.isfinite(c_e) and math.isfinite(k_e)):
                 _fail(label, f"non-finite coefficients at iteration {iteration}", index[s], current, count)
             change = max(
@@ -312,7 +209,7 @@ def linearize(
             statistics[:, index] = sigma
             return LinearizedBuilding(building, full_c, full_k, iteration, *statistics)
         x = coefficients / scale
-        step, filled = _mixing_step(x, target / scale - x, history_x, history_f, filled, relaxation, count)
+        step, filled = mixing_step(x, target / scale - x, history_x, history_f, filled, relaxation, count)
         if not step.any():
             _fail(label, f"no step keeps c_e > 0 and k_e < 0 at iteration {iteration}", index[worst_storey], coefficients, count)
         coefficients = (x + step) * scale

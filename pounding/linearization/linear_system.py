@@ -238,19 +238,15 @@ def building_state_space(linearized: LinearizedBuilding, spectrum: KanaiTajimi) 
     return state_space((linearized,), spectrum)
 
 
-def pair_state_space(case, linearized=None) -> StateSpace:
+def pair_state_space(case, linearized) -> StateSpace:
     """Joint state space of a case's two linearized buildings and the ground
     filter of its stationary spectrum: the model behind the cross covariances
-    of Eq. 16-18 and 25.
+    of Eq. 16-18 and 25 (:attr:`pounding.pair.LinearizedPair.state_space`).
 
     Parameters
     ----------
     case : Case
-    linearized : tuple of two LinearizedBuilding, optional
-        From :func:`linearize_pair`; computed when omitted.
+    linearized : tuple of two LinearizedBuilding
+        From :func:`~pounding.linearization.linearize_pair`.
     """
-    if linearized is None:
-        from .iteration import linearize_pair  # iteration builds on this module
-
-        linearized = linearize_pair(case)
     return state_space(linearized, case.excitation.spectrum)

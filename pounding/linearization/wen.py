@@ -1,7 +1,7 @@
 """Eq. 20-21: the equivalent linear coefficients c_e and k_e of a Bouc-Wen
 storey from the Gaussian statistics of its drift velocity and hysteretic
 displacement (Wen 1980, Atalik & Utku 1976), with the printing errors of
-Eq. 21 corrected (NOTES.md points 4 and 5).
+Eq. 21 corrected (docs/errata.md, E5 and E6).
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from scipy.special import betainc, gamma
 # --- Eq. 20-21: the equivalent linear coefficients ---------------------------
 
 
-def _wen_constants(n):
+def wen_constants(n):
     """Constants of Eq. 21 that depend on n only: E[r^n] of the Rayleigh
     radius split as in Wen (1980), and B(1/2, (n+1)/2) of I_s."""
     n = np.asarray(n, dtype=float)
@@ -36,7 +36,7 @@ def _wen_integral(rho, n, beta_half):
 
 
 def _wen_terms(sigma_velocity, sigma_z, rho, constants):
-    """(F1, F2, F3, F4) of Eq. 21 with the constants of :func:`_wen_constants`."""
+    """(F1, F2, F3, F4) of Eq. 21 with the constants of :func:`wen_constants`."""
     n, a, b, beta_half = constants
     i_s = _wen_integral(rho, n, beta_half)
     sigma_z_n1 = sigma_z ** (n - 1.0)
@@ -66,9 +66,9 @@ def wen_expectations(sigma_velocity, sigma_z, rho, n):
 
     Two printing errors of Eq. 21 are corrected here. F3 and F4 scale with the
     standard deviation of the drift *velocity*, not of the drift: as printed
-    k_e would have the wrong dimensions (NOTES.md point 4). The angle of I_s is
+    k_e would have the wrong dimensions (docs/errata.md, E5). The angle of I_s is
     l = arccos(rho); the printed atan(sqrt(1 - rho^2) / rho) takes the wrong
-    branch for rho < 0 and flips the sign of I_s there (NOTES.md point 5).
+    branch for rho < 0 and flips the sign of I_s there (docs/errata.md, E6).
 
     Parameters
     ----------
@@ -91,10 +91,11 @@ def wen_expectations(sigma_velocity, sigma_z, rho, n):
     sigma_velocity, sigma_z, rho, n = np.broadcast_arrays(
         *(np.asarray(value, dtype=float) for value in (sigma_velocity, sigma_z, rho, n))
     )
-    return _wen_terms(sigma_velocity, sigma_z, np.clip(rho, -1.0, 1.0), _wen_constants(n))
+    return _wen_terms(sigma_velocity, sigma_z, np.clip(rho, -1.0, 1.0), wen_constants(n))
 
 
-def _coefficients(A, beta, gamma_, statistics, constants):
+def coefficients_from_statistics(A, beta, gamma_, statistics, constants):
+    """c_e and k_e of Eq. 20 from (sigma_velocity, sigma_z, rho) and :func:`wen_constants` of n."""
     f1, f2, f3, f4 = _wen_terms(*statistics, constants)
     return A - beta * f1 - gamma_ * f2, -beta * f3 - gamma_ * f4
 
@@ -118,4 +119,4 @@ def equivalent_coefficients(A, beta, gamma_, n, sigma_velocity, sigma_z, rho):
     sigma_velocity, sigma_z, rho, n = np.broadcast_arrays(
         *(np.asarray(value, dtype=float) for value in (sigma_velocity, sigma_z, rho, n))
     )
-    return _coefficients(A, beta, gamma_, (sigma_velocity, sigma_z, np.clip(rho, -1.0, 1.0)), _wen_constants(n))
+    return coefficients_from_statistics(A, beta, gamma_, (sigma_velocity, sigma_z, np.clip(rho, -1.0, 1.0)), wen_constants(n))

@@ -7,14 +7,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import defaults
 from ..case import Case
 from ..errors import SimulationError
-from ..estimator import DEFAULT_TARGET_PROBABILITY, Estimate, GapCurve, estimate
-from ..linearization import equivalent_storey_force, linearize_pair
-from ..response import psd_relative_velocity
+from ..estimator import Estimate, GapCurve, estimate
+from ..linearization import equivalent_storey_force
+from ..pair import LinearizedPair
 from ..simulation import DesignGap, SimulationResult, TimeHistory, simulate_record
 
-DEFAULT_SEED = 1
+DEFAULT_SEED = defaults.REPORT_SEED
 """Seed of the study whose record the hysteresis loops show."""
 DEFAULT_RECORD = 0
 """Index of that record."""
@@ -104,7 +105,7 @@ def compute_snapshot(
     case: Case,
     seed: int = DEFAULT_SEED,
     record: int = DEFAULT_RECORD,
-    target_probability: float = DEFAULT_TARGET_PROBABILITY,
+    target_probability: float = defaults.TARGET_PROBABILITY,
     monte_carlo: tuple = (),
 ) -> Snapshot:
     """Run the library once for ``case``: the linearization is computed once and shared.
@@ -112,12 +113,13 @@ def compute_snapshot(
     Raises whatever the library raises for an impossible case (``CaseError``,
     ``ConvergenceError``); a failed record is kept in ``history_error``.
     """
-    linearized = linearize_pair(case)
-    result = estimate(case, target_probability, linearized=linearized)
+    pair = LinearizedPair.of(case)
+    linearized = pair.buildings
+    result = estimate(pair, target_probability)
     curve = result.gap_curve(gap_grid(case, result))
     omega = np.geomspace(0.3, case.excitation.cutoff_frequency, PSD_POINTS)
     psd_ground = np.asarray(case.excitation.spectrum.psd(omega), dtype=float)
-    psd_velocity = psd_relative_velocity(case, linearized, omega)
+    psd_velocity = pair.psd_relative_velocity(omega)
     history, history_error, equivalent = None, "", ()
     try:
         history = simulate_record(case, seed, record)

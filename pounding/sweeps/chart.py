@@ -7,7 +7,7 @@ import os
 from collections.abc import Sequence
 from pathlib import Path
 
-from .store import _write_atomic
+from .store import write_atomic
 
 
 def write_chart(table, paths: Sequence[str], path: str | os.PathLike, units: str = "SI", title: str = "Sweep") -> Path:
@@ -63,5 +63,5 @@ def write_chart(table, paths: Sequence[str], path: str | os.PathLike, units: str
         legend = Legend(items=items, click_policy="hide", label_text_font_size="8pt")
         plot.add_layout(legend, "below")
     text = file_html(row(force, probability), resources=INLINE, title=title)
-    _write_atomic(path, text.encode("utf-8"))
+    write_atomic(path, text.encode("utf-8"))
     return path

@@ -7,8 +7,10 @@ import json
 import math
 import sys
 
+from .. import defaults
+from ..arguments import whole_number
 from .engine import CHUNK_RECORDS, SERIAL, TABLE_FORMATS, sweep
-from .spec import _normalized_vary
+from .spec import normalized_vary
 
 DESCRIPTION = (
     "Parametric study: every combination of the --vary values, estimated in closed form and simulated by "
@@ -30,9 +32,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
     parser.add_argument("--vary", action="append", default=[], metavar="PATH=VALUES",
                         help="a key of the case file and its values, in the case's units: start:stop:count or a,b,c "
                         "(repeat for more keys; every combination is run)")
-    from ..cli import whole_number  # the command line's own argument types
 
-    parser.add_argument("--records", type=whole_number(1), default=100, help="Monte Carlo records per point (default 100)")
+    parser.add_argument("--records", type=whole_number(1), default=defaults.SWEEP_RECORDS,
+                        help=f"Monte Carlo records per point (default {defaults.SWEEP_RECORDS})")
     parser.add_argument("--seed", type=whole_number(0), default=0, help="seed of the study (default 0)")
     parser.add_argument("-o", "--output", required=True, metavar="DIR",
                         help="folder of the results and of the finished chunks (rerun with it to resume)")
@@ -62,7 +64,7 @@ def run(args: argparse.Namespace) -> int:
     Returns 0. Raises :class:`CaseError` on bad input (the CLI prints it on one
     line and exits 2); on Ctrl-C, says how to resume and re-raises.
     """
-    vary = _normalized_vary(args.vary)
+    vary = normalized_vary(args.vary)
     bar = None
     if sys.stderr.isatty():
         from tqdm import tqdm

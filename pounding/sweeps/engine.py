@@ -11,12 +11,13 @@ from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
 
+from .. import defaults
 from ..errors import CaseError
 from .chart import write_chart
-from .points import _case_data, _Point, _points
-from .spec import _normalized_vary
-from .store import _Store, _write_atomic, _write_json
-from .work import DEFAULT_TOLERANCE, _warm, chunk_sums, point_estimate
+from .points import Point, case_data, sweep_points
+from .spec import normalized_vary
+from .store import Store, write_atomic, write_json
+from .work import DEFAULT_TOLERANCE, chunk_sums, point_estimate, warm
 
 CHUNK_RECORDS = 100
 """Default records per chunk: about 0.4 s of work for 20 s records of two
@@ -48,7 +49,7 @@ class SweepInterrupted(RuntimeError):
 
 @dataclass(frozen=True)
 class _Task:
-    point: _Point
+    point: Point
     first: int | None = None  # None: the closed-form estimate
     count: int = 0
 
@@ -150,7 +151,7 @@ def _run_tasks(tasks: list[_Task], client, seed: int, tolerance: float, done: Ca
             future.cancel()
 
 
-def _missing(points: list[_Point], chunks: list[tuple[int, int]], store: _Store) -> tuple[list[_Task], int]:
+def _missing(points: list[Point], chunks: list[tuple[int, int]], store: Store) -> tuple[list[_Task], int]:
     """The tasks whose files are missing (or unreadable), and the number of chunks found done."""
     tasks, found = [], 0
     for point in points:
@@ -176,7 +177,7 @@ def _within_budget(tasks: list[_Task], max_chunks: int) -> list[_Task]:
     return kept
 
 
-def _compute(tasks: list[_Task], store: _Store, scheduler, workers, seed: int, tolerance: float,
+def _compute(tasks: list[_Task], store: Store, scheduler, workers, seed: int, tolerance: float,
              progress: Callable[[int, int], None] | None, done: int, total: int) -> int:
     """Run ``tasks``, saving each result as it arrives; returns the chunks computed."""
     computed = 0
@@ -186,9 +187,9 @@ def _compute(tasks: list[_Task], store: _Store, scheduler, workers, seed: int, t
     def finished(task: _Task, result: dict) -> None:
         nonlocal computed, done
         if not task.is_chunk:
-            _write_json(store.estimate_path(task.point), result)
+            write_json(store.estimate_path(task.point), result)
             return
-        _write_json(store.chunk_path(task.point, task.first, task.count), result)
+        write_json(store.chunk_path(task.point, task.first, task.count), result)
         computed += 1
         done += task.count
         if progress is not None:
@@ -198,7 +199,7 @@ def _compute(tasks: list[_Task], store: _Store, scheduler, workers, seed: int, t
         client = _Client(scheduler, workers)
         try:
             if client.client is not None:
-                client.client.run(_warm, tasks[0].point.data)
+                client.client.run(warm, tasks[0].point.data)
             _run_tasks(tasks, client.client, seed, tolerance, finished)
         finally:
             client.close()
@@ -208,7 +209,7 @@ def _compute(tasks: list[_Task], store: _Store, scheduler, workers, seed: int, t
 def sweep(
     case,
     vary: Mapping[str, Sequence[float] | str] | Iterable[str] | None,
-    records: int = 100,
+    records: int = defaults.SWEEP_RECORDS,
     seed: int = 0,
     output_dir: str | os.PathLike = "sweep",
     scheduler=None,
@@ -304,11 +305,11 @@ def sweep(
     from ..simulation import Settings
 
     Settings(tolerance=tolerance)  # validates it
-    data, name = _case_data(case)
-    varied = _normalized_vary(vary)
+    data, name = case_data(case)
+    varied = normalized_vary(vary)
     paths = [path for path, _ in varied]
-    points = _points(data, name, varied, seed, tolerance)
-    store = _Store(Path(output_dir))
+    points = sweep_points(data, name, varied, seed, tolerance)
+    store = Store(Path(output_dir))
     units = str(data.get("units", "SI"))
     store.write_manifest({
         "case": name, "units": units, "vary": {path: list(values) for path, values in varied}, "records": records,
@@ -341,7 +342,7 @@ def sweep(
     return table
 
 
-def _totals(point: _Point, chunks: list[tuple[int, int]], store: _Store) -> dict:
+def _totals(point: Point, chunks: list[tuple[int, int]], store: Store) -> dict:
     """The chunks' sums added up, exactly."""
     n = pounding = impacts = 0
     force = square = velocity = Fraction(0)
@@ -390,7 +391,7 @@ def monte_carlo_summary(totals: dict) -> dict:
     }
 
 
-def _table(points: list[_Point], paths: list[str], chunks, store: _Store, records: int, seed: int):
+def _table(points: list[Point], paths: list[str], chunks, store: Store, records: int, seed: int):
     import pandas as pd
 
     def number(value):
@@ -428,8 +429,8 @@ def _write_table(table, path: Path, table_format: str) -> None:
     import io
 
     if table_format == "csv":
-        _write_atomic(path, table.to_csv(index=False).encode())
+        write_atomic(path, table.to_csv(index=False).encode())
     else:
         buffer = io.BytesIO()
         table.to_parquet(buffer, index=False)
-        _write_atomic(path, buffer.getvalue())
+        write_atomic(path, buffer.getvalue())

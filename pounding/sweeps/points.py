@@ -17,7 +17,7 @@ from ..errors import CaseError
 _FILE_FORMAT = 1  # bump when the chunk files' meaning changes: old ones are then ignored
 
 
-def _case_data(case) -> tuple[dict, str]:
+def case_data(case) -> tuple[dict, str]:
     """The parsed case file of ``case`` (preset name, TOML path or dict) and its name."""
     import tomllib
 
@@ -88,14 +88,14 @@ def _physics(data: dict) -> dict:
 
 
 @dataclass(frozen=True)
-class _Point:
+class Point:
     index: int
     values: tuple[float, ...]  # one per varied path, in the case's units
     data: dict  # the case file with the varied keys set
     key: str  # hash of the physics, the seed and the tolerance
 
 
-def _points(data: dict, name: str, vary: list[tuple[str, tuple[float, ...]]], seed: int, tolerance: float) -> list[_Point]:
+def sweep_points(data: dict, name: str, vary: list[tuple[str, tuple[float, ...]]], seed: int, tolerance: float) -> list[Point]:
     """Every combination of the varied values, each loaded (and so validated) once here."""
     from ..case import case_from_dict
 
@@ -112,7 +112,7 @@ def _points(data: dict, name: str, vary: list[tuple[str, tuple[float, ...]]], se
         except CaseError as error:
             where = f" (at {label})" if label else ""
             raise CaseError(error.field, f"{error.message}{where}") from None
-        points.append(_Point(index, tuple(values), point, _point_key(point, seed, tolerance)))
+        points.append(Point(index, tuple(values), point, _point_key(point, seed, tolerance)))
     return points
 
 

@@ -101,7 +101,7 @@ def _check_path_syntax(path: str, spec: str) -> None:
         raise CaseError("--vary", f"{spec!r}: empty part in the key path {path!r}")
 
 
-def _normalized_vary(vary: Mapping[str, Sequence[float] | str] | Iterable[str] | None) -> list[tuple[str, tuple[float, ...]]]:
+def normalized_vary(vary: Mapping[str, Sequence[float] | str] | Iterable[str] | None) -> list[tuple[str, tuple[float, ...]]]:
     """``vary`` as a list of (path, values); values given as a spec string are parsed."""
     if vary is None:
         return []

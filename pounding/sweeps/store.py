@@ -9,10 +9,10 @@ import tempfile
 from pathlib import Path
 
 from ..errors import CaseError
-from .points import _Point
+from .points import Point
 
 
-def _write_atomic(path: Path, data: bytes) -> None:
+def write_atomic(path: Path, data: bytes) -> None:
     """Write ``data`` to a temporary file beside ``path``, then rename it over
     ``path``: a reader sees the whole file or none."""
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -32,8 +32,8 @@ def _write_atomic(path: Path, data: bytes) -> None:
         raise
 
 
-def _write_json(path: Path, value) -> None:
-    _write_atomic(path, (json.dumps(value, indent=1) + "\n").encode())
+def write_json(path: Path, value) -> None:
+    write_atomic(path, (json.dumps(value, indent=1) + "\n").encode())
 
 
 def _read_json(path: Path):
@@ -44,36 +44,36 @@ def _read_json(path: Path):
         return None
 
 
-class _Store:
+class Store:
     """The files of a sweep in ``root``."""
 
     def __init__(self, root: Path):
         self.root = root
 
-    def point_dir(self, point: _Point) -> Path:
+    def point_dir(self, point: Point) -> Path:
         return self.root / "points" / point.key
 
-    def estimate_path(self, point: _Point) -> Path:
+    def estimate_path(self, point: Point) -> Path:
         return self.point_dir(point) / "estimate.json"
 
-    def chunk_path(self, point: _Point, first: int, count: int) -> Path:
+    def chunk_path(self, point: Point, first: int, count: int) -> Path:
         return self.point_dir(point) / f"chunk-{first:09d}-{count}.json"
 
     def write_manifest(self, manifest: dict) -> None:
         if self.root.exists() and not self.root.is_dir():
             raise CaseError("output", f"{str(self.root)!r} exists and is not a folder")
-        _write_json(self.root / "sweep.json", manifest)
+        write_json(self.root / "sweep.json", manifest)
 
-    def write_point(self, point: _Point, paths: list[str]) -> None:
+    def write_point(self, point: Point, paths: list[str]) -> None:
         path = self.point_dir(point) / "point.json"
         if not path.exists():
-            _write_json(path, {"values": dict(zip(paths, point.values)), "case": point.data})
+            write_json(path, {"values": dict(zip(paths, point.values)), "case": point.data})
 
-    def estimate(self, point: _Point) -> dict | None:
+    def estimate(self, point: Point) -> dict | None:
         value = _read_json(self.estimate_path(point))
         return value if isinstance(value, dict) and "force" in value else None
 
-    def chunk(self, point: _Point, first: int, count: int) -> dict | None:
+    def chunk(self, point: Point, first: int, count: int) -> dict | None:
         value = _read_json(self.chunk_path(point, first, count))
         if not (isinstance(value, dict) and value.get("first") == first and value.get("records") == count):
             return None

@@ -1,14 +1,15 @@
 """The work, done on Dask workers: a chunk of Monte Carlo records reduced to
 exact sums (:func:`chunk_sums`), a point's closed-form figures
-(:func:`point_estimate`), and the warm-up of a worker process (:func:`_warm`)."""
+(:func:`point_estimate`), and the warm-up of a worker process (:func:`warm`)."""
 
 from __future__ import annotations
 
 from fractions import Fraction
 
+from .. import defaults
 from ..errors import CaseError
 
-DEFAULT_TOLERANCE = 1e-6
+DEFAULT_TOLERANCE = defaults.INTEGRATOR_TOLERANCE
 
 
 def _fraction_text(value: Fraction) -> str:
@@ -87,7 +88,7 @@ def point_estimate(data: dict) -> dict:
 _WARM = False
 
 
-def _warm(data: dict) -> None:
+def warm(data: dict) -> None:
     """Load the numba kernels in this process once (about 1 s from the disk cache)."""
     global _WARM
     if not _WARM:

@@ -1,0 +1,166 @@
+"""Where an estimate lies among the regimes in which the recommended
+estimator's accuracy was measured against Monte Carlo, what was measured
+there, and the warnings it carries (docs/accuracy.md).
+
+The measured numbers are read from ``pounding/data/accuracy.json``, which
+``validation/accuracy_data.py`` writes (with its seeds, cases and commit).
+
+The thresholds below decide the regime, and so the accuracy statement and
+the warnings an estimate carries. They were chosen by looking at Monte Carlo
+results (the force formula itself has no fitted constant); docs/theory.md,
+"Constants chosen by looking at Monte Carlo results", says which draw and
+which value before.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from functools import lru_cache
+from importlib import resources
+
+from .excitation import CloughPenzien
+
+__all__ = [
+    "MODERATE_GAP",
+    "MOVING_TOGETHER",
+    "NARROW_BAND_LIMIT",
+    "REGIMES",
+    "RESIDUAL_SHARE_LIMIT",
+    "Assessment",
+    "accuracy_data",
+    "accuracy_regime",
+    "assess",
+]
+
+MODERATE_GAP = 0.5
+"""gap / sigma_X above which pounding is no longer frequent [-]. Fitted: chosen by looking at the grid's
+Monte Carlo errors, where the yielding pairs' heavier-than-Gaussian tail starts to show."""
+NARROW_BAND_LIMIT = 0.55
+"""Bandwidth q of X below which the relative motion counts as narrow band [-]. Fitted: raised from 0.35
+after the random draws' Monte Carlo showed errors over 10 % up to q = 0.55."""
+RESIDUAL_SHARE_LIMIT = 0.2
+"""Share the residual's response adds to sigma_X or sigma_V above which it counts as large [-]. Fitted: chosen
+where the Monte Carlo errors of storeys near elastic-perfectly plastic grew past 10 %."""
+MOVING_TOGETHER = 0.9
+"""Correlation of the contact floors' x1, x2 from which a yielding pair's design gap was measured unsafe [-].
+Fitted: set on the first random draw, where every unsafe pair lay at 0.92 or above; held on the other two."""
+
+REGIMES = ("frequent", "moderate gap", "narrow band", "large residual", "rare")
+
+
+def accuracy_regime(gap: float, sigma_x: float, residual_share: float, bandwidth: float) -> str:
+    """Which of :data:`REGIMES` ``gap`` [m] lies in: the first that applies of
+    rare pounding (gap > sigma_X [m], with the residual's response), a large
+    residual (``residual_share`` over :data:`RESIDUAL_SHARE_LIMIT`), a narrow
+    band (``bandwidth`` q of X below :data:`NARROW_BAND_LIMIT`), a moderate gap
+    (gap > sigma_X / 2), else frequent pounding."""
+    if gap > sigma_x:
+        return "rare"
+    if residual_share > RESIDUAL_SHARE_LIMIT:
+        return "large residual"
+    if bandwidth < NARROW_BAND_LIMIT:
+        return "narrow band"
+    if gap > MODERATE_GAP * sigma_x:
+        return "moderate gap"
+    return "frequent"
+
+
+@lru_cache(maxsize=1)
+def accuracy_data() -> dict:
+    """The measured accuracy (``pounding/data/accuracy.json``), read once."""
+    return json.loads(resources.files("pounding").joinpath("data/accuracy.json").read_text())
+
+
+@dataclass(frozen=True)
+class Assessment:
+    """What an estimate says of its own accuracy.
+
+    Attributes
+    ----------
+    regime : str
+        One of :data:`REGIMES`.
+    measured_accuracy : str
+        How far from Monte Carlo the recommended force was measured on cases like this one (one sentence).
+    warnings : tuple of str
+        What is wrong, how large the error can be, what to do (each at most 200 characters).
+    """
+
+    regime: str
+    measured_accuracy: str
+    warnings: tuple[str, ...]
+
+
+def _span(entry: dict) -> str:
+    return f"{100 * entry['low']:+.0f} % to {100 * entry['high']:+.0f} %"
+
+
+def _force_entry(spectrum: str, regime: str, yielding: bool) -> dict:
+    table = accuracy_data()["force"][spectrum]
+    if regime == "rare":
+        return table["rare, yielding" if yielding else "rare, elastic"]
+    return table["gap below sigma_X"] if spectrum == "clough-penzien" else table[regime]
+
+
+def _statement(entry: dict, where: str) -> str:
+    return (f"Measured {_span(entry)} off Monte Carlo {where} (within 10 % on {entry['within_10_percent']} "
+            f"of {entry['cases']} cases).")
+
+
+_WHERE = {
+    "frequent": "where pounding is frequent",
+    "moderate gap": "where the gap lies between sigma_X / 2 and sigma_X",
+    "narrow band": "where the relative motion is narrow-band",
+    "large residual": "where storeys are near elastic-perfectly plastic",
+    "rare": "where pounding is rare",
+}
+_CHECK = "Check it with `pounding simulate`."
+
+
+def assess(pair, gap: float, sigma_x: float, required_gap: float, target_probability: float) -> Assessment:
+    """The regime, measured accuracy and warnings of an estimate on a
+    :class:`~pounding.pair.LinearizedPair` at ``gap`` [m], ``sigma_x`` [m]
+    the relative displacement's with the residual's response, and the gap it
+    gives for ``target_probability`` [m]."""
+    spectrum = "clough-penzien" if isinstance(pair.case.excitation.spectrum, CloughPenzien) else "kanai-tajimi"
+    yielding, share, bandwidth = pair.yielding, pair.residual_share, pair.bandwidth
+    regime = accuracy_regime(gap, sigma_x, share, bandwidth)
+    where = _WHERE[regime] + (" under a Clough-Penzien spectrum" if spectrum == "clough-penzien" else "")
+    entry = _force_entry(spectrum, regime, yielding)
+    warnings = []
+    if spectrum == "clough-penzien" and yielding:
+        drift = accuracy_data()["required_gap"]["clough-penzien, yielding"]
+        warnings.append("A building yields and the spectrum has no low frequencies: the estimate misses its plastic "
+                        f"drift; up to {100 * drift['max']:.0f} % of records pounded at the gap for 95 %. {_CHECK}")
+    if share > RESIDUAL_SHARE_LIMIT:
+        warnings.append(f"Storeys near elastic-perfectly plastic (the residual adds {100 * share:.0f} % to sigma): the "
+                        f"force may be off by {_span(_force_entry(spectrum, 'large residual', yielding))}. {_CHECK}")
+    if bandwidth < NARROW_BAND_LIMIT:
+        warnings.append(f"The relative motion is narrow-band (q = {bandwidth:.2f}): the force may be off by "
+                        f"{_span(_force_entry(spectrum, 'narrow band', yielding))}. {_CHECK}")
+    if MODERATE_GAP * sigma_x < gap <= sigma_x:
+        warnings.append("The gap lies between sigma_X / 2 and sigma_X: the force may be off by "
+                        f"{_span(_force_entry(spectrum, 'moderate gap', yielding))}. {_CHECK}")
+    if gap > sigma_x:
+        warnings.append(f"Pounding is rare at this gap (above sigma_X): the force may be off by {_span(entry)}. {_CHECK}")
+    if required_gap > sigma_x:  # where pairs like this one were measured to pound more often than 1 - 0.95
+        warning = _required_gap_warning(pair, spectrum, yielding, target_probability)
+        if warning:
+            warnings.append(warning)
+    return Assessment(regime, _statement(entry, where), tuple(warnings))
+
+
+def _required_gap_warning(pair, spectrum: str, yielding: bool, target_probability: float) -> str:
+    """The warning on the gap for the target probability where, on pairs like this one (by spectrum, yielding
+    and, for yielding pairs under Kanai-Tajimi, whether the floors move together: :data:`MOVING_TOGETHER`), more
+    than 5 % of simulated records pounded on average at the gap given for 95 %; "" elsewhere."""
+    correlation = pair.stationary_response.correlation_displacement
+    kind = f"{spectrum}, {'yielding' if yielding else 'elastic'}"
+    together = spectrum == "kanai-tajimi" and yielding and correlation >= MOVING_TOGETHER
+    measured = accuracy_data()["required_gap"][kind + (", floors moving together" if together else "")]
+    if measured["mean"] <= 0.05:
+        return ""  # on average no more records pounded than the target allows
+    cause = f" and the floors move together (correlation {correlation:.2f})" if together else ""
+    percent = f"{100 * target_probability:g}"
+    return (f"The gap for {percent} % lies where pounding is rare{cause}: up to {100 * measured['max']:.0f} % of records pounded "
+            f"at such gaps for 95 %. Size it with `pounding simulate --design-gap {target_probability:g}`.")
