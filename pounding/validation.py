@@ -3,7 +3,7 @@ both closed-form estimators (``pounding validate``).
 
 The paper's own numbers are data quoted from it [MN]; everything else is
 computed. Two readings of the excitation are compared: the parameters as
-printed, and G0 times 4 pi^2 (NOTES.md: as if a Hz / rad/s slip happened in
+printed, and G0 times 4 pi^2 (docs/errata.md: as if a Hz / rad/s slip happened in
 the authors' PSD or generator), a conjecture tested here, not assumed.
 """
 
@@ -22,7 +22,7 @@ from .simulation import simulate
 from .structures import BoucWen, Building, Storey
 
 __all__ = [
-    "ASSUMPTIONS", "PAPER_TABLES", "RANDOM_FAMILIES", "READINGS", "READINGS_MEASURED", "AccuracyRow", "ValidationRow", "accuracy", "accuracy_cases",
+    "ASSUMPTIONS", "PAPER_TABLES", "RANDOM_FAMILIES", "READINGS", "READINGS_MEASURED", "AccuracyRow", "ValidationRow", "accuracy", "accuracy_cases", "mdof_case", "varied_case",
     "random_case", "random_cases", "validate",
 ]
 
@@ -43,7 +43,7 @@ G0 is 65.03 x 4 pi^2 cm^2/s^3)."""
 READINGS_MEASURED = (
     "As printed, this project's Monte Carlo and both estimators give forces about 15 times smaller than Tables 1-2 and "
     "3-8 times smaller than Tables 5-6; no reading of the units, of Eq. 12 or of the restitution closes that gap. With "
-    "G0 x 4 pi^2 (NOTES.md's Hz / rad/s conjecture) Section 5 comes to the paper's order and trend but not to its "
+    "G0 x 4 pi^2 (the Hz / rad/s conjecture of docs/errata.md) Section 5 comes to the paper's order and trend but not to its "
     "numbers (Table 1: 3.9, 3.5, 2.5 MN against 4.8, 4.4, 3.7 MN), and Section 6 overshoots (1.24 MN against 0.45 MN, "
     "with the assumed frames): the conjecture is refuted as an exact explanation, plausible as part of one "
     "(300 records; docs/estimator.md, \"The paper's tables\")."
@@ -135,7 +135,7 @@ def validate(
 # --- accuracy of the estimators over a wide grid ------------------------------
 
 
-def _vary(case: Case, *, g0: float = 1.0, gap: float | None = None, restitution: float | None = None,
+def varied_case(case: Case, *, g0: float = 1.0, gap: float | None = None, restitution: float | None = None,
           periods: tuple[float | None, float | None] = (None, None), elastic: bool = False, name: str = "") -> Case:
     """``case`` with its G0 scaled, its gap [m] and restitution set, the period
     of a one-storey building changed (stiffness = m omega^2), or every storey
@@ -159,7 +159,7 @@ def _vary(case: Case, *, g0: float = 1.0, gap: float | None = None, restitution:
     return dataclasses.replace(case, excitation=excitation, contact=contact, buildings=tuple(buildings), name=name or case.name)
 
 
-def _mdof_case() -> Case:
+def mdof_case() -> Case:
     """A three-storey building beside a two-storey one, meeting at the second
     floor: the shear-building extension of Section 7 (Eq. 36-39)."""
     paper = load_case("section5-T2-0.4")
@@ -180,31 +180,31 @@ def accuracy_cases() -> list[Case]:
     cases = [
         s5["0.4"], s5["0.6"], s5["0.8"], s5n, load_case("section5-T2-0.8-nonstationary"),
         load_case("section6-T2-0.4"), load_case("section6-T2-0.8"), load_case("section6-T2-0.4-nonstationary"),
-        _vary(s5["0.4"], g0=0.25, name="s5-T2-0.4 G0x0.25"),
-        _vary(s5["0.8"], g0=0.25, name="s5-T2-0.8 G0x0.25"),
-        _vary(s5["0.4"], g0=4.0, name="s5-T2-0.4 G0x4"),
-        _vary(s5["0.4"], g0=4 * math.pi**2, name="s5-T2-0.4 G0x4pi2"),
-        _vary(s5["0.8"], g0=4 * math.pi**2, name="s5-T2-0.8 G0x4pi2"),
-        _vary(s5["0.4"], restitution=0.4, name="s5-T2-0.4 e0.4"),
-        _vary(s5["0.4"], restitution=0.9, name="s5-T2-0.4 e0.9"),
-        _vary(s5["0.4"], gap=0.0, name="s5-T2-0.4 gap0"),
-        _vary(s5["0.4"], gap=0.05, name="s5-T2-0.4 gap5cm"),
-        _vary(s5["0.8"], gap=0.03, name="s5-T2-0.8 gap3cm"),
-        _vary(s5["0.4"], g0=10.0, gap=0.05, name="s5-T2-0.4 G0x10 gap5cm"),
-        _vary(s5["0.4"], periods=(None, 0.2), name="T1 1.2 T2 0.2"),
-        _vary(s5["0.4"], periods=(None, 2.0), name="T1 1.2 T2 2.0"),
-        _vary(s5["0.4"], g0=4.0, periods=(0.3, 0.2), name="T1 0.3 T2 0.2 G0x4"),
-        _vary(s5["0.4"], g0=0.25, gap=0.0, restitution=0.9, periods=(None, 2.0), name="T2 2.0 G0x0.25 gap0 e0.9"),
-        _vary(load_case("section6-T2-0.6"), g0=10.0, restitution=0.4, name="s6-T2-0.6 G0x10 e0.4"),
-        _vary(s5["0.6"], gap=0.02, restitution=0.9, name="s5-T2-0.6 gap2cm e0.9"),
-        _mdof_case(),
-        _vary(s5["0.4"], elastic=True, gap=0.10, name="elastic 1.2/0.4 gap10cm"),
-        _vary(s5["0.4"], elastic=True, gap=0.06, name="elastic 1.2/0.4 gap6cm"),
-        _vary(s5["0.4"], elastic=True, gap=0.03, periods=(0.5, 0.3), name="elastic 0.5/0.3 gap3cm"),
-        _vary(s5n, elastic=True, gap=0.06, name="elastic 1.2/0.4 gap6cm modulated"),
-        _vary(s5["0.4"], elastic=True, gap=0.12, name="elastic 1.2/0.4 gap12cm"),
-        _vary(s5["0.4"], g0=0.25, gap=0.05, name="s5-T2-0.4 G0x0.25 gap5cm"),
-        _vary(s5["0.8"], g0=0.25, gap=0.034, name="s5-T2-0.8 G0x0.25 gap3.4cm"),
+        varied_case(s5["0.4"], g0=0.25, name="s5-T2-0.4 G0x0.25"),
+        varied_case(s5["0.8"], g0=0.25, name="s5-T2-0.8 G0x0.25"),
+        varied_case(s5["0.4"], g0=4.0, name="s5-T2-0.4 G0x4"),
+        varied_case(s5["0.4"], g0=4 * math.pi**2, name="s5-T2-0.4 G0x4pi2"),
+        varied_case(s5["0.8"], g0=4 * math.pi**2, name="s5-T2-0.8 G0x4pi2"),
+        varied_case(s5["0.4"], restitution=0.4, name="s5-T2-0.4 e0.4"),
+        varied_case(s5["0.4"], restitution=0.9, name="s5-T2-0.4 e0.9"),
+        varied_case(s5["0.4"], gap=0.0, name="s5-T2-0.4 gap0"),
+        varied_case(s5["0.4"], gap=0.05, name="s5-T2-0.4 gap5cm"),
+        varied_case(s5["0.8"], gap=0.03, name="s5-T2-0.8 gap3cm"),
+        varied_case(s5["0.4"], g0=10.0, gap=0.05, name="s5-T2-0.4 G0x10 gap5cm"),
+        varied_case(s5["0.4"], periods=(None, 0.2), name="T1 1.2 T2 0.2"),
+        varied_case(s5["0.4"], periods=(None, 2.0), name="T1 1.2 T2 2.0"),
+        varied_case(s5["0.4"], g0=4.0, periods=(0.3, 0.2), name="T1 0.3 T2 0.2 G0x4"),
+        varied_case(s5["0.4"], g0=0.25, gap=0.0, restitution=0.9, periods=(None, 2.0), name="T2 2.0 G0x0.25 gap0 e0.9"),
+        varied_case(load_case("section6-T2-0.6"), g0=10.0, restitution=0.4, name="s6-T2-0.6 G0x10 e0.4"),
+        varied_case(s5["0.6"], gap=0.02, restitution=0.9, name="s5-T2-0.6 gap2cm e0.9"),
+        mdof_case(),
+        varied_case(s5["0.4"], elastic=True, gap=0.10, name="elastic 1.2/0.4 gap10cm"),
+        varied_case(s5["0.4"], elastic=True, gap=0.06, name="elastic 1.2/0.4 gap6cm"),
+        varied_case(s5["0.4"], elastic=True, gap=0.03, periods=(0.5, 0.3), name="elastic 0.5/0.3 gap3cm"),
+        varied_case(s5n, elastic=True, gap=0.06, name="elastic 1.2/0.4 gap6cm modulated"),
+        varied_case(s5["0.4"], elastic=True, gap=0.12, name="elastic 1.2/0.4 gap12cm"),
+        varied_case(s5["0.4"], g0=0.25, gap=0.05, name="s5-T2-0.4 G0x0.25 gap5cm"),
+        varied_case(s5["0.8"], g0=0.25, gap=0.034, name="s5-T2-0.8 G0x0.25 gap3.4cm"),
     ]
     return cases
 
@@ -236,7 +236,7 @@ def random_case(family: str, rng: np.random.Generator, index: int) -> Case:
         "elastic": load_case("section5-T2-0.4"),
         "elastic modulated": load_case("section5-T2-0.4-nonstationary"),
         "frames": load_case("section6-T2-0.6"),
-        "MDOF": _mdof_case(),
+        "MDOF": mdof_case(),
     }[family]
     if family in ("frames", "MDOF"):
         buildings = tuple(_with_period(b, float(p)) for b, p in zip(base.buildings, periods))
@@ -244,7 +244,7 @@ def random_case(family: str, rng: np.random.Generator, index: int) -> Case:
     name = (f"{index:2d} {family} T {base.buildings[0].periods[0] if periods[0] is None else periods[0]:.2f}/"
             f"{base.buildings[1].periods[0] if periods[1] is None else periods[1]:.2f} s G0x{g0:.2f} "
             f"gap {100 * gap:.1f} cm e {restitution:.2f}")
-    return _vary(base, g0=g0, gap=gap, restitution=restitution, periods=tuple(periods),
+    return varied_case(base, g0=g0, gap=gap, restitution=restitution, periods=tuple(periods),
                  elastic=family.startswith("elastic"), name=name)
 
 
@@ -271,7 +271,7 @@ class AccuracyRow:
     pounding_fraction: float
     pounding_probability: float
     accuracy_regime: str
-    """The estimate's own (:func:`pounding.estimator.accuracy_regime`)."""
+    """The estimate's own (:func:`pounding.regimes.accuracy_regime`)."""
 
     @property
     def recommended_error(self) -> float | None:
