@@ -24,6 +24,7 @@ from threadpoolctl import threadpool_limits  # noqa: E402
 
 from dashboard.model import PoundingModel  # noqa: E402
 from pounding.report import RESULT_CSS, Figures, result_html, write_report  # noqa: E402
+from pounding.contact import contact_law  # noqa: E402
 from pounding.units import unit_system  # noqa: E402
 
 pn.extension(notifications=False)
@@ -84,7 +85,8 @@ def _unit_label(model: PoundingModel, name: str) -> str:
     if name.startswith(("beta_", "gamma_")):
         n = getattr(model, f"n_{base[1]}")
         return f"Bouc-Wen {base[0]} [1/{L}^{n:g}]"
-    exponent = "" if model.contact_model == "linear" else "^1.5"
+    power = contact_law(model.contact_model).stiffness_exponent
+    exponent = "" if power == 1 else f"^{power:g}"
     return {
         "mass": f"storey mass [{u.mass_label}]",
         "stiffness": f"storey stiffness [{F}/{L}]",

@@ -26,7 +26,8 @@ from typing import Callable
 import param
 
 from pounding import simulate
-from pounding.case import DEFAULT_PRESET, case_from_dict, load_case, preset_names
+from pounding import defaults
+from pounding.case import case_from_dict, load_case, preset_names
 from pounding.contact import CONTACT_MODELS
 from pounding.errors import CaseError, ConvergenceError, SimulationError
 from pounding.excitation import CloughPenzien
@@ -34,61 +35,21 @@ from pounding.report import DEFAULT_SEED, MonteCarloPoint, compute_snapshot
 from pounding.simulation import Cancelled, DesignGap, design_gap
 from pounding.units import UNIT_SYSTEMS, unit_system
 
+from dashboard.inputs import DIMENSIONS, MAX_STOREYS, building_params
+
 __all__ = ["DIMENSIONS", "PoundingModel"]
 
 _EXECUTOR = ThreadPoolExecutor(max_workers=2, thread_name_prefix="pounding-mc")
 """Shared by all sessions: at most two studies at a time (each uses every core)."""
 
-MAX_STOREYS = 10
-
-
-def _building_params(number: int, period: float) -> dict:
-    b = f"building {number}"
-    return {
-        f"storeys_{number}": param.Integer(1, bounds=(1, MAX_STOREYS), label="storeys", doc=f"Number of storeys of {b}; all alike."),
-        f"period_{number}": param.Number(
-            period, bounds=(0.05, 5.0), step=0.05, label="period T [s]",
-            doc=f"Initial period of {b} [s] (one storey: with the mass it fixes the stiffness; more storeys: the fundamental period, shown).",
-        ),
-        f"mass_{number}": param.Number(4e4, label="storey mass", doc=f"Floor mass of each storey of {b} [mass unit]."),
-        f"stiffness_{number}": param.Number(
-            1e6, label="storey stiffness", doc=f"Initial stiffness of each storey of {b} [force/length] (one storey: from the period, shown)."
-        ),
-        f"damping_ratio_{number}": param.Number(0.05, bounds=(0.0, 0.3), step=0.01, label="damping ratio [-]", doc="Viscous damping ratio of the first mode."),
-        f"alpha_{number}": param.Number(0.05, bounds=(0.0, 1.0), step=0.01, label="Bouc-Wen alpha [-]", doc="Post-yield to initial stiffness ratio."),
-        f"A_{number}": param.Number(1.0, bounds=(0.1, 3.0), step=0.05, label="Bouc-Wen A [-]", doc="Amplitude of the hysteretic rate."),
-        f"beta_{number}": param.Number(200.0, label="Bouc-Wen beta", doc="Shape parameter [1/length^n]; beta + gamma > 0."),
-        f"gamma_{number}": param.Number(-100.0, label="Bouc-Wen gamma", doc="Shape parameter [1/length^n]; beta - gamma >= 0."),
-        f"n_{number}": param.Number(1.0, bounds=(0.5, 4.0), step=0.5, label="Bouc-Wen n [-]", doc="Smoothness of yielding, >= 1."),
-    }
-
-
-def _dimensions(model: PoundingModel) -> dict[str, dict]:
-    """Dimension (exponents of length, force, mass) of each dimensional input."""
-    exponent = 1.0 if model.contact_model == "linear" else 1.5
-    dims = {
-        "G0": {"length": 2},
-        "gap": {"length": 1},
-        "contact_stiffness": {"force": 1, "length": -exponent},
-    }
-    for b in (1, 2):
-        n = getattr(model, f"n_{b}")
-        dims |= {f"mass_{b}": {"mass": 1}, f"stiffness_{b}": {"force": 1, "length": -1}, f"beta_{b}": {"length": -n}, f"gamma_{b}": {"length": -n}}
-    return dims
-
-
-DIMENSIONS = _dimensions
-"""``DIMENSIONS(model)``: the dimensional inputs and their dimensions."""
-
-
 class PoundingModel(param.Parameterized):
     """Inputs of a case (in the display unit system) and the results for it."""
 
-    preset = param.Selector(default=DEFAULT_PRESET, objects=preset_names(), doc="A built-in case (the paper's Sections 5 and 6).")
+    preset = param.Selector(default=defaults.CASE, objects=preset_names(), doc="A built-in case (the paper's Sections 5 and 6).")
     units = param.Selector(default="SI", objects=list(UNIT_SYSTEMS), label="units", doc="Unit system of the inputs and results.")
 
-    locals().update(_building_params(1, 1.2))
-    locals().update(_building_params(2, 0.4))
+    locals().update(building_params(1, 1.2))
+    locals().update(building_params(2, 0.4))
 
     level_1 = param.Integer(1, bounds=(1, MAX_STOREYS), label="contact storey of building 1", doc="Floor of building 1 that meets building 2.")
     level_2 = param.Integer(1, bounds=(1, MAX_STOREYS), label="contact storey of building 2", doc="Floor of building 2 that meets building 1.")
@@ -105,7 +66,7 @@ class PoundingModel(param.Parameterized):
     B1 = param.Number(0.085, bounds=(0.005, 2.0), step=0.005, label="envelope B1 [1/s]", doc="Shinozuka-Sato decay constant B1 (Eq. 9), below B2.")
     B2 = param.Number(0.17, bounds=(0.01, 5.0), step=0.005, label="envelope B2 [1/s]", doc="Shinozuka-Sato decay constant B2 (Eq. 9), above B1.")
 
-    records = param.Integer(50, bounds=(10, 500), step=10, label="records", doc="Records of the reduced-sample Monte Carlo study and of the Monte Carlo design gap.")
+    records = param.Integer(defaults.DASHBOARD_RECORDS, bounds=(10, 500), step=10, label="records", doc="Records of the reduced-sample Monte Carlo study and of the Monte Carlo design gap.")
     seed = param.Integer(DEFAULT_SEED, bounds=(0, None), label="seed", doc="Seed of the study and of the design gap's records.")
 
     # --- outputs (not inputs) ---

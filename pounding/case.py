@@ -11,6 +11,7 @@ import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
+from . import defaults
 from .contact import Contact, contact_law
 from .errors import CaseError
 from .excitation import CloughPenzien, Excitation, KanaiTajimi, ShinozukaSato
@@ -20,7 +21,7 @@ from .units import SI, UnitSystem, unit_system
 
 __all__ = ["DEFAULT_PRESET", "Case", "case_from_dict", "load_case", "preset_description", "preset_names"]
 
-DEFAULT_PRESET = "section5-T2-0.4"
+DEFAULT_PRESET = defaults.CASE
 
 
 @dataclass(frozen=True)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 __all__ = [
     "CASE",
+    "DASHBOARD_RECORDS",
     "DESIGN_GAP_RECORDS",
     "INTEGRATOR_TOLERANCE",
     "MICHAELOV_N1",
@@ -29,6 +30,8 @@ INTEGRATOR_TOLERANCE = 1e-6
 """Relative tolerance of the time-history integrator's local error per step [-]."""
 RECORDS = 100
 """Records of a Monte Carlo study (``pounding simulate``, ``simulate``)."""
+DASHBOARD_RECORDS = 50
+"""Records of the dashboard's reduced-sample Monte Carlo and its Monte Carlo design gap."""
 DESIGN_GAP_RECORDS = 400
 """Records of a Monte Carlo design gap (``design_gap``); 45 or more give the 90 % bound for 95 %."""
 SWEEP_RECORDS = 100

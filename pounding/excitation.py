@@ -48,7 +48,7 @@ class KanaiTajimi:
         Ground (filter) frequency [rad/s].
     xi_g : float
         Ground damping ratio [-]. (The text after Eq. 7 swaps the two names:
-        omega_g = 27.02 rad/s, xi_g = 0.34; NOTES.md 2.)
+        omega_g = 27.02 rad/s, xi_g = 0.34; docs/errata.md, E3.)
     """
 
     G0: float
@@ -172,7 +172,7 @@ class Excitation:
         default) gives records periodic over about their duration, which carry
         nothing below about pi / duration [rad/s]; a larger factor represents
         the spectrum down to lower frequencies (a convergence check: see
-        docs/estimator.md, "The records' lowest frequencies"). 1 to 64.
+        docs/accuracy.md). 1 to 64.
     """
 
     spectrum: KanaiTajimi

@@ -103,7 +103,7 @@ def expected_absolute_peak(sigma, sigma_derivative, weights, bandwidth: float, p
     Davenport's factor (Eq. 23) it follows a response building up from rest
     or under an envelope, and it takes a narrow-band response's crossings in
     runs, where Davenport's factor counts each (it puts a lightly damped
-    building's peak 10-20 % high: docs/estimator.md, "The separation rules").
+    building's peak 10-20 % high: docs/accuracy.md).
     For a stationary record and q = 1 it tends to Davenport's peak for the
     rate 2 nu. While a response builds up, Y and Y' correlate and the exact
     rate of crossings is a little higher than nu_t's; the count leaves that

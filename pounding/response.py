@@ -119,7 +119,7 @@ class ContactResponse:
     @property
     def sigma_relative_velocity(self) -> float:
         """sigma of V = v1 - v2 [m/s]: sigma_v1^2 + sigma_v2^2 - 2 E[v1 v2] (Eq. 16; the terms Eq. 16-17
-        call standard deviations are variances, NOTES.md 3)."""
+        call standard deviations are variances, docs/errata.md, E4)."""
         return self._sigma_difference(_V1, _V2)
 
     @property
@@ -211,7 +211,7 @@ def frequency_response(linearized: LinearizedBuilding, omega) -> np.ndarray:
     k_dyn(w) u with k_dyn = alpha k + (1 - alpha) k c_e i w / (i w - k_e) + i w c;
     then (-w^2 M + T^T diag(k_dyn) T) H = -M 1. For one storey |H|^2 is Eq. 22,
     which prints only the modulus: the cross terms of Eq. 18 and 25 need the
-    complex H of each building (NOTES.md 6).
+    complex H of each building (docs/errata.md, E7).
 
     Parameters
     ----------

@@ -46,7 +46,7 @@ READINGS_MEASURED = (
     "G0 x 4 pi^2 (the Hz / rad/s conjecture of docs/errata.md) Section 5 comes to the paper's order and trend but not to its "
     "numbers (Table 1: 3.9, 3.5, 2.5 MN against 4.8, 4.4, 3.7 MN), and Section 6 overshoots (1.24 MN against 0.45 MN, "
     "with the assumed frames): the conjecture is refuted as an exact explanation, plausible as part of one "
-    "(300 records; docs/estimator.md, \"The paper's tables\")."
+    "(300 records; docs/accuracy.md)."
 )
 """What the two readings gave when measured, printed under the tables."""
 

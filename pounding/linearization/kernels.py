@@ -10,6 +10,8 @@ in one file.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 

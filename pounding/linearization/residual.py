@@ -28,7 +28,7 @@ The correction is one pass (r evaluated on the linearized motion, not on the
 corrected one) and changes nothing for elastic storeys (r = 0). The Gaussian
 z is not bounded by z_u = (A / (beta + gamma))^(1/n) as the Bouc-Wen z is, and
 for nearly elastic-perfectly plastic storeys most of E[r^2] comes from beyond
-that bound: there the correction overshoots (docs/estimator.md).
+that bound: there the correction overshoots (docs/accuracy.md).
 Units: SI; the input r is a rate of z [m/s].
 """
 

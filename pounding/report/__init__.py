@@ -33,14 +33,14 @@ from .snapshot import (
     compute_snapshot,
     gap_grid,
 )
-from .static import METHOD_NOTES, REPORT_NOTE, report_html, write_report
+from .static import REPORT_NOTE, method_notes, report_html, write_report
 
 __all__ = [
     "DEFAULT_RECORD",
     "DEFAULT_SEED",
     "DISPLAY_UNITS",
     "GAP_POINTS",
-    "METHOD_NOTES",
+    "method_notes",
     "PLOTTED_STEPS",
     "PSD_POINTS",
     "REPORT_NOTE",

@@ -85,7 +85,7 @@ def result_html(
         f"{_design_gap_html(snapshot, d, design_gap, design_gap_note)}"
         f'<p class="monte-carlo">Monte Carlo mean F<sub>max</sub>: {mc}</p>'
     )
-    summary += f'<p class="measured-accuracy">Recommended F<sub>e</sub>: {html.escape(e.measured_accuracy)} (docs/estimator.md).</p>'
+    summary += f'<p class="measured-accuracy">Recommended F<sub>e</sub>: {html.escape(e.measured_accuracy)}</p>'
     if e.warnings:
         summary += "".join(f'<p class="estimate-warning">&#9888; {html.escape(w)}</p>' for w in e.warnings)
     return (
