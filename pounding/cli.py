@@ -10,7 +10,7 @@ import argparse
 import json
 import math
 import sys
-from functools import partial
+from functools import lru_cache, partial
 
 from . import defaults
 from .arguments import whole_number
@@ -41,6 +41,7 @@ class _Parser(argparse.ArgumentParser):
         self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message}\n")
 
 
+@lru_cache(maxsize=1)  # built once per process: parsing does not change it
 def _parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="pounding",
