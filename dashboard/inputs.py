@@ -6,7 +6,6 @@ from __future__ import annotations
 import param
 
 from pounding.contact import contact_law
-from pounding.units import unit_system
 
 __all__ = ["DIMENSIONS", "MAX_STOREYS", "building_params"]
 

@@ -194,7 +194,7 @@ class PoundingModel(param.Parameterized):
         old = unit_system(self._shown_units)
         new = unit_system(self.units)
         values = {}
-        for name, dims in _dimensions(self).items():
+        for name, dims in DIMENSIONS(self).items():
             values[name] = new.from_si(old.to_si(getattr(self, name), **dims), **dims)
         self._syncing = True
         try:

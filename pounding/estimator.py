@@ -21,7 +21,13 @@ from . import defaults
 from .case import Case
 from .contact import peak_force_ratio
 from .errors import CaseError, check_probability
-from .gap_aware import Crossings, expected_force_maximum, expected_maximum, gap_for_probability, opposing_forces
+from .gap_aware import (
+    Crossings,
+    expected_force_maximum,
+    expected_maximum,
+    gap_for_probability,
+    opposing_forces,
+)
 from .pair import LinearizedPair
 from .paper_method import PaperEstimate, check_michaelov_n1, paper_estimate
 from .regimes import assess

@@ -38,12 +38,16 @@ Units: SI.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from .crossing_kernels import jump_memory, solve_dashpots, vanmarcke_bandwidth, with_dashpot
+from .crossing_kernels import (
+    jump_memory,
+    solve_dashpots,
+    vanmarcke_bandwidth,
+    with_dashpot,
+)
 from .errors import ConvergenceError
 from .response import spectral_grid, spectral_moments, spectral_weights
 

@@ -163,15 +163,8 @@ def derivatives(ground_acceleration, y, dydt, floors, below, contact, floor_1, f
         if j >= 0:
             dydt[n + j] += storey_force
     penetration = y[floor_1] - y[floor_2] - contact[C_GAP]
-    force = contact_force(
-        int(contact[C_MODEL]),
-        penetration,
-        y[n + floor_1] - y[n + floor_2],
-        contact[C_STIFFNESS],
-        contact[C_DAMPING_RATIO],
-        contact[C_REDUCED_MASS],
-        approach_velocity,
-    )
+    force = contact_force(int(contact[C_MODEL]), penetration, y[n + floor_1] - y[n + floor_2], contact[C_STIFFNESS],
+                          contact[C_DAMPING_RATIO], contact[C_REDUCED_MASS], approach_velocity)
     dydt[n + floor_1] -= force
     dydt[n + floor_2] += force
     for i in range(n):
@@ -258,13 +251,8 @@ def integrate_record(
     y = y0.copy()
     y_new = np.empty(n_state)
     y_stage = np.empty(n_state)
-    k1 = np.empty(n_state)
-    k2 = np.empty(n_state)
-    k3 = np.empty(n_state)
-    k4 = np.empty(n_state)
-    k5 = np.empty(n_state)
-    k6 = np.empty(n_state)
-    k7 = np.empty(n_state)
+    k1, k2, k3, k4 = np.empty(n_state), np.empty(n_state), np.empty(n_state), np.empty(n_state)
+    k5, k6, k7 = np.empty(n_state), np.empty(n_state), np.empty(n_state)
     for c in range(SUMMARY_COLUMNS):
         summary[c] = 0.0
     gap = contact[C_GAP]

@@ -14,9 +14,15 @@ import numpy as np
 
 from .case import Case
 from .covariance_history import time_varying_covariance
+from .crossing_kernels import vanmarcke_bandwidth
 from .errors import CaseError
 from .impact_damping import ImpactDamping, impact_damping
-from .linearization import LinearizedBuilding, StateSpace, linearize_pair, pair_state_space
+from .linearization import (
+    LinearizedBuilding,
+    StateSpace,
+    linearize_pair,
+    pair_state_space,
+)
 from .linearization.residual import residual_response
 from .response import (
     ContactResponse,
@@ -30,7 +36,6 @@ from .response import (
     spectral_moments,
     trapezoid_weights,
 )
-from .crossing_kernels import vanmarcke_bandwidth
 
 __all__ = ["HISTORY_STEP", "LinearizedPair"]
 

@@ -7,20 +7,23 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import os
 import threading
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import bdtr, stdtrit  # binomial CDF, Student t quantile; scipy.stats costs a second to import
+from scipy.special import (  # binomial CDF, Student t quantile; scipy.stats costs a second to import
+    bdtr,
+    stdtrit,
+)
 
-from . import integrator as kernel
 from . import defaults
+from . import integrator as kernel
 from .case import Case
-from .errors import CaseError, SimulationError, check_probability
+from .errors import CaseError, check_probability
 from .excitation import ground_accelerations
+from .system import Cancelled, Settings, failure, kernel_system
 
 __all__ = [
     "Cancelled",
@@ -34,96 +37,6 @@ __all__ = [
     "simulate",
     "simulate_record",
 ]
-
-_FAILURES = {
-    kernel.NOT_FINITE: "the response became NaN or infinite",
-    kernel.RUNAWAY: "a floor displacement exceeded the runaway limit of {limit:g} m",
-    kernel.STEP_UNDERFLOW: "the step size fell below 1e-12 s (the system is too stiff to resolve)",
-}
-
-
-class Cancelled(Exception):
-    """A simulation was cancelled through its ``cancel`` event."""
-
-
-@dataclass(frozen=True)
-class Settings:
-    """Numerical settings of the time-history analysis.
-
-    Parameters
-    ----------
-    tolerance : float
-        Relative tolerance of the local error per step [-]; the absolute
-        tolerances are tolerance * 1 mm on displacements and hysteretic
-        displacements, tolerance * 1 cm/s on velocities.
-    displacement_limit : float
-        A floor displacement beyond this [m] is reported as a runaway response.
-    workers : int or None
-        Threads running records in parallel; None uses every core.
-    chunk_size : int
-        Records per task (progress is reported per chunk).
-    """
-
-    tolerance: float = defaults.INTEGRATOR_TOLERANCE
-    displacement_limit: float = 10.0
-    workers: int | None = None
-    chunk_size: int = 8
-
-    def __post_init__(self):
-        if not (isinstance(self.tolerance, float | int) and 1e-12 <= self.tolerance <= 1e-2):
-            raise CaseError("tolerance", f"must lie in [1e-12, 1e-2], got {self.tolerance!r}")
-        if not (isinstance(self.displacement_limit, float | int) and self.displacement_limit > 0):
-            raise CaseError("displacement_limit", f"must be > 0 m, got {self.displacement_limit!r}")
-        if self.workers is not None and not (isinstance(self.workers, int) and self.workers >= 1):
-            raise CaseError("workers", f"must be a whole number >= 1, got {self.workers!r}")
-        if not (isinstance(self.chunk_size, int) and self.chunk_size >= 1):
-            raise CaseError("chunk_size", f"must be a whole number >= 1, got {self.chunk_size!r}")
-
-    @property
-    def n_workers(self) -> int:
-        return self.workers or os.cpu_count() or 1
-
-
-@dataclass(frozen=True)
-class _System:
-    """The case packed into the kernel's arrays."""
-
-    floors: np.ndarray
-    below: np.ndarray
-    contact: np.ndarray
-    floor_1: int
-    floor_2: int
-    atol: np.ndarray
-
-    @property
-    def n_floors(self) -> int:
-        return self.below.size
-
-
-def _system(case: Case, settings: Settings) -> _System:
-    rows, below = [], []
-    for building in case.buildings:
-        offset = len(rows)
-        for number, (storey, damping) in enumerate(zip(building.storeys, building.storey_damping())):
-            bw = storey.bouc_wen
-            rows.append([storey.mass, storey.stiffness, damping, bw.alpha, bw.A, bw.beta, bw.gamma, bw.n])
-            below.append(offset + number - 1 if number > 0 else -1)
-    n1 = case.buildings[0].n_storeys
-    contact = case.contact
-    contact_vector = np.array(
-        [contact.model_code, contact.gap, contact.stiffness, contact.damping_ratio(), case.reduced_mass]
-    )
-    n = len(rows)
-    atol = np.concatenate([np.full(n, 1e-3), np.full(n, 1e-2), np.full(n, 1e-3)]) * settings.tolerance
-    return _System(
-        floors=np.array(rows, dtype=float),
-        below=np.array(below, dtype=np.int64),
-        contact=contact_vector,
-        floor_1=contact.levels[0] - 1,
-        floor_2=n1 + contact.levels[1] - 1,
-        atol=atol,
-    )
-
 
 @dataclass(frozen=True)
 class SimulationResult:
@@ -219,12 +132,6 @@ class SimulationResult:
         }
 
 
-def _failure(summary: np.ndarray, label: str, settings: Settings) -> SimulationError:
-    """The error for a record whose kernel status is not OK."""
-    reason = _FAILURES[int(summary[kernel.S_STATUS])].format(limit=settings.displacement_limit)
-    return SimulationError(f"{label} failed at t = {summary[kernel.S_TIME]:.4f} s: {reason}")
-
-
 def _check_records(records: int, seed: int, first_record: int) -> None:
     if isinstance(records, bool) or not isinstance(records, int) or records < 1:
         raise CaseError("records", f"must be a whole number >= 1, got {records!r}")
@@ -275,7 +182,7 @@ def simulate(
     """
     settings = settings or Settings()
     _check_records(records, seed, first_record)
-    system = _system(case, settings)
+    system = kernel_system(case, settings)
     excitation = case.excitation
     y0 = np.zeros(3 * system.n_floors)
     indices = np.arange(first_record, first_record + records)
@@ -304,7 +211,7 @@ def simulate(
                 failed = np.flatnonzero(summaries[chunk, kernel.S_STATUS] != kernel.OK)
                 if failed.size:
                     row = chunk.start + failed[0]
-                    raise _failure(summaries[row], f"record {indices[row]} (seed {seed})", settings)
+                    raise failure(summaries[row], f"record {indices[row]} (seed {seed})", settings)
                 done += chunk.stop - chunk.start
                 if progress is not None:
                     progress(done, records)
@@ -484,7 +391,7 @@ def integrate(
         Names the record in error messages.
     """
     settings = settings or Settings()
-    system = _system(case, settings)
+    system = kernel_system(case, settings)
     record = np.ascontiguousarray(ground_acceleration, dtype=float)
     if record.ndim != 1 or record.size < 2:
         raise CaseError("ground_acceleration", "must be a 1-D array of at least 2 samples")
@@ -506,7 +413,7 @@ def integrate(
             break
         capacity *= 4
     if summary[kernel.S_STATUS] != kernel.OK:
-        raise _failure(summary, label, settings)
+        raise failure(summary, label, settings)
     time, state, force = time[:stored], state[:stored], force[:stored]
     n = system.n_floors
     displacement, velocity, hysteretic = state[:, :n], state[:, n : 2 * n], state[:, 2 * n :]

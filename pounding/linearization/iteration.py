@@ -12,8 +12,8 @@ import numpy as np
 from ..errors import ConvergenceError
 from ..excitation import KanaiTajimi
 from ..structures import Building
-from .linear_system import LinearizedBuilding, state_space
 from .kernels import iteration_moments, mixing_step
+from .linear_system import LinearizedBuilding, state_space
 from .lyapunov import DENSE_LYAPUNOV_LIMIT, lyapunov_covariance, lyapunov_maps
 from .wen import coefficients_from_statistics, wen_constants
 

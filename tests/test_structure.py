@@ -1,0 +1,107 @@
+"""The design rules the code base keeps (docs/user-guide.md, "Layout"): no import cycle, imports inside
+functions included; no module over 500 lines; every compiled (numba) function calls compiled functions of its
+own file only, so that numba's on-disk cache, which does not see an edit to a callee in another file, cannot
+go stale; the fast path of ``pounding estimate`` imports no plotting or dashboard library."""
+
+from __future__ import annotations
+
+import ast
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+PACKAGES = ("pounding", "dashboard")
+
+
+def _modules() -> dict[str, Path]:
+    modules = {}
+    for package in PACKAGES:
+        for path in (ROOT / package).rglob("*.py"):
+            parts = path.relative_to(ROOT).with_suffix("").parts
+            name = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+            modules[name] = path
+    return modules
+
+
+def _imports(name: str, path: Path, modules: dict[str, Path]) -> set[str]:
+    """Every module of the project that ``name`` imports, at module level or inside a function."""
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")[: len(package.split(".")) - node.level + 1]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            candidates = [target] + [f"{target}.{alias.name}" for alias in node.names]
+        elif isinstance(node, ast.Import):
+            candidates = [alias.name for alias in node.names]
+        else:
+            continue
+        found.update(c for c in candidates if c in modules and c != name)
+    return found
+
+
+def test_there_is_no_import_cycle():
+    modules = _modules()
+    graph = {name: _imports(name, path, modules) for name, path in modules.items()}
+    # A cycle through a package and its own submodule (pounding -> pounding.x -> pounding) is not one here.
+    state: dict[str, int] = {}
+    cycles = []
+
+    def visit(node: str, trail: list[str]) -> None:
+        state[node] = 1
+        for target in sorted(graph[node]):
+            if state.get(target) == 1:
+                cycle = trail[trail.index(target):] + [target]
+                if not all(c == cycle[0] or c.startswith(cycle[0] + ".") or cycle[0].startswith(c + ".") for c in cycle):
+                    cycles.append(" -> ".join(cycle))
+            elif target not in state:
+                visit(target, trail + [target])
+        state[node] = 2
+
+    for name in sorted(graph):
+        if name not in state:
+            visit(name, [name])
+    assert cycles == []
+
+
+@pytest.mark.parametrize("name", sorted(_modules()))
+def test_no_module_is_over_500_lines(name):
+    assert len(_modules()[name].read_text().splitlines()) <= 500
+
+
+def _compiled_functions(path: Path) -> dict[str, ast.FunctionDef]:
+    out = {}
+    for node in ast.parse(path.read_text()).body:
+        if isinstance(node, ast.FunctionDef) and any(
+            (isinstance(d, ast.Call) and getattr(d.func, "id", "") == "njit") or getattr(d, "id", "") == "njit"
+            for d in node.decorator_list
+        ):
+            out[node.name] = node
+    return out
+
+
+def test_every_compiled_call_tree_lives_in_one_file():
+    compiled = {name: path for path in _modules().values() for name in _compiled_functions(path)}
+    crossing = []
+    for path in _modules().values():
+        for name, function in _compiled_functions(path).items():
+            for node in ast.walk(function):
+                if isinstance(node, ast.Call):
+                    callee = node.func.id if isinstance(node.func, ast.Name) else getattr(node.func, "attr", "")
+                    if callee in compiled and compiled[callee] != path:
+                        crossing.append(f"{path.name}:{name} calls {compiled[callee].name}:{callee}")
+    assert crossing == []
+
+
+def test_an_estimate_imports_no_plotting_library():
+    code = ("import io, contextlib, sys\nfrom pounding.cli import main\n"
+            "with contextlib.redirect_stdout(io.StringIO()):\n    main(['estimate', 'section5-T2-0.4', '--json'])\n"
+            "print(sorted(m for m in ('bokeh', 'holoviews', 'panel', 'matplotlib', 'dask', 'pandas') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=ROOT)
+    assert out.stdout.strip() == "[]"
