@@ -46,7 +46,9 @@ __all__ = [
 ]
 
 CLUMP_EXPONENT = 1.2
-"""Vanmarcke's exponent of the bandwidth in the clump constant sqrt(pi / 2) q^1.2 (G3)."""
+"""Vanmarcke's exponent of the bandwidth in the clump constant sqrt(pi / 2) q^1.2 (G3). The impacts cross one
+barrier, the gap, yet are counted with Vanmarcke's double-barrier constant sqrt(pi / 2): chosen by looking at
+Monte Carlo results, where the one-sided sqrt(2 pi) put the elastic pairs further off (docs/theory.md)."""
 _MERGE_TOLERANCE = 1e-4  # instants whose sigmas agree to this are one (the built-up stationary part)
 
 
