@@ -1,8 +1,8 @@
 """The compiled counts of crossings and peaks: Vanmarcke's bandwidth and
 clump factor, Rice's rate with the time cut, the gap-aware estimator's count
-of approaches (docs/theory.md, G2-G5), its required gap (G9), the separation
-rules' count of a floor's peaks (G10), and the impacts' equivalent dashpot
-(G6-G7).
+of approaches (docs/theory.md, G4-G8, G14), its required gap (G22), the separation
+rules' count of a floor's peaks (G23), and the impacts' equivalent dashpot
+(G10-G13).
 
 Numba's on-disk cache of a compiled function does not notice an edit to a
 compiled function it calls in another file, so these call trees live here,
@@ -91,7 +91,7 @@ def clumped_crossings(levels, sigma, rate, clumping):
 def time_cut_rate(gap, sigma_x, sigma_v):
     """Rice's rate of upcrossings of the gap per unit of time spent below it,
     (sigma_V / (2 pi sigma_X)) exp(-u^2 / 2) / Phi(u), u = gap / sigma_X [1/s];
-    0 beyond :data:`U_MAX` (G2)."""
+    0 beyond :data:`U_MAX` (G4-G5)."""
     u = gap / sigma_x
     if u >= U_MAX:
         return 0.0

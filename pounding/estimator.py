@@ -1,7 +1,7 @@
 """Closed-form estimates of the expected extreme pounding force, without a
 time-history analysis: the paper's method as published (Section 4, Eq. 12-30,
 with the printing errors of docs/errata.md fixed; :mod:`pounding.paper_method`)
-and this project's gap-aware estimator (docs/theory.md, G1-G10;
+and this project's gap-aware estimator (docs/theory.md, G1-G26;
 :mod:`pounding.gap_aware`), side by side, with the regime and accuracy each
 estimate states (:mod:`pounding.regimes`).
 
@@ -213,7 +213,7 @@ def estimate(
     response = pair.response_with_residual
     contact = case.contact
     gap = np.array([contact.gap])
-    impacts = float(crossings.intensity(gap, np.zeros(1))[0, 0])  # G4 at v = 0
+    impacts = float(crossings.intensity(gap, np.zeros(1))[0, 0])  # G21: Lambda(gap, 0)
     required_gap = gap_for_probability(crossings, target_probability)
     impacting = crossings.damped(gap)
     (velocity,) = expected_maximum(crossings, gap, lambda v: v, 1.0, impacting)

@@ -1,4 +1,4 @@
-"""The gap-aware estimator's counts (docs/theory.md, G1-G9): the free
+"""The gap-aware estimator's counts (docs/theory.md, G2-G22): the free
 relative motion's sigma_X(t), sigma_V(t) from rest (:class:`Crossings`),
 the expected number of approaches faster than v on the gap, the impacting
 motion damped by its impacts, the expected largest approach speed and force,
@@ -10,18 +10,18 @@ process of frequency omega = sigma_V / sigma_X:
 
 - an impact's approach velocity is that of an upcrossing of the gap by the
   free motion: Rayleigh, Rice's rate omega / (2 pi) exp(-(u^2 + rho^2) / 2)
-  for crossings faster than v = rho sigma_V, u = d / sigma_X (G2);
+  for crossings faster than v = rho sigma_V, u = d / sigma_X (G4);
 - impacts start only from below the gap: Rice's rate per unit of time spent
-  below it, divided by P(X < d) = Phi(u) (the time cut, G2);
-- crossings of a high level come in clumps (Vanmarcke's factor, G3);
+  below it, divided by P(X < d) = Phi(u) (the time cut, G5);
+- crossings of a high level come in clumps (Vanmarcke's factor, G6-G7);
 - the largest approach is counted on the motion the impacts before it leave
-  (:mod:`pounding.impact_damping`, G6-G7); the pounding probability and the
+  (:mod:`pounding.impact_damping`, G10-G14); the pounding probability and the
   gap for a target probability on the free motion, which the first impact meets;
 - counted as a Poisson process over the record, the largest approach
-  velocity V_max (0 without impact) has P(V_max <= v) = exp(-Lambda(v)) (G4);
+  velocity V_max (0 without impact) has P(V_max <= v) = exp(-Lambda(v)) (G8-G9);
 - each impact peaks at the contact law's own force K F_H(v) against the
-  buildings' mean force at the gap f0 = m (sigma_V / sigma_X)^2 d (G8), and
-  E[F_max] = int P(V_max > v) dF(v) (G5).
+  buildings' mean force at the gap f0 = m (sigma_V / sigma_X)^2 d (G16-G18), and
+  E[F_max] = int P(V_max > v) dF(v) (G19).
 """
 
 from __future__ import annotations
@@ -46,7 +46,7 @@ __all__ = [
 ]
 
 CLUMP_EXPONENT = 1.2
-"""Vanmarcke's exponent of the bandwidth in the clump constant sqrt(pi / 2) q^1.2 (G3). The impacts cross one
+"""Vanmarcke's exponent of the bandwidth in the clump constant sqrt(pi / 2) q^1.2 (G7). The impacts cross one
 barrier, the gap, yet are counted with Vanmarcke's double-barrier constant sqrt(pi / 2): chosen by looking at
 Monte Carlo results, where the one-sided sqrt(2 pi) put the elastic pairs further off (docs/theory.md)."""
 _MERGE_TOLERANCE = 1e-4  # instants whose sigmas agree to this are one (the built-up stationary part)
@@ -70,7 +70,7 @@ class Crossings:
     def of(cls, pair) -> Crossings:
         """The crossings of a :class:`~pounding.pair.LinearizedPair`: its
         covariance history from rest, each variance scaled by its stationary
-        ratio with the residual's response to the linearized one (G1)."""
+        ratio with the residual's response to the linearized one (G2-G3)."""
         pair.check_relative_motion()
         weights, history = pair.history_from_rest
         response, linear = pair.response_with_residual, pair.stationary_response
@@ -91,7 +91,7 @@ class Crossings:
         return cls(x, v, w, damping.bandwidth, frequency_squared, damping)
 
     def intensity(self, gaps, velocities, clumps: bool = True) -> np.ndarray:
-        """Lambda(gap, v) of the free motion (G4): expected number of approaches
+        """Lambda(gap, v) of the free motion (G8): expected number of approaches
         faster than v before the impacts change the motion, shape (gaps, velocities).
 
         The count of the probability of pounding and of the gap for a target
@@ -105,7 +105,7 @@ class Crossings:
 
     def damped(self, gaps) -> DampedMotion:
         """The motion between impacts at each gap [m]: the free motion damped by
-        its impacts (G7; undamped without ``damping``)."""
+        its impacts (G12-G13; undamped without ``damping``)."""
         gaps = np.ascontiguousarray(gaps, dtype=float).ravel()
         if self.damping is None:
             ones, zeros = np.ones(gaps.size), np.zeros(gaps.size)
@@ -133,7 +133,7 @@ class Crossings:
 
 
 def opposing_forces(crossings: Crossings, gaps, reduced_mass: float) -> np.ndarray:
-    """f0 = m E[-X'' | X = d] = m (sigma_V / sigma_X)^2 d [N] for each gap (G8):
+    """f0 = m E[-X'' | X = d] = m (sigma_V / sigma_X)^2 d [N] for each gap (G17):
     the buildings' restoring and damping forces at the gap, averaged (for a
     stationary X, Cov(X'', X) = -sigma_V^2 and Cov(X'', X') = 0), with the
     stationary sigmas (an envelope scales both alike)."""
@@ -141,7 +141,7 @@ def opposing_forces(crossings: Crossings, gaps, reduced_mass: float) -> np.ndarr
 
 
 def expected_maximum(crossings: Crossings, gaps, size, power: float, motion: DampedMotion, points: int = 121) -> np.ndarray:
-    """E[size(V_max)] for each gap (G5), V_max = 0 without impact and ``size`` an
+    """E[size(V_max)] for each gap (G19-G20), V_max = 0 without impact and ``size`` an
     increasing function of the speed with size(0) = 0 (``size(v)`` gets v of
     shape (1, points) and may broadcast it against the gaps):
     int P(V_max > v) d size(v), P(V_max > v) = 1 - exp(-Lambda(v)), Lambda the
@@ -157,7 +157,7 @@ def expected_maximum(crossings: Crossings, gaps, size, power: float, motion: Dam
 def expected_force_maximum(
     crossings: Crossings, gaps, contact: Contact, reduced_mass: float, motion: DampedMotion, points: int = 121
 ) -> np.ndarray:
-    """E[F_max] [N] for each gap [m] (G5, G8), F(v) the peak force of an impact
+    """E[F_max] [N] for each gap [m] (G19, G18), F(v) the peak force of an impact
     at speed v against the gap's opposing force (increasing in v, as v^p)."""
     opposing = opposing_forces(crossings, gaps, reduced_mass)[:, None]
     return expected_maximum(
@@ -167,7 +167,7 @@ def expected_force_maximum(
 
 
 def gap_for_probability(crossings: Crossings, target_probability: float) -> float:
-    """Smallest gap [m] with exp(-Lambda(gap, 0)) >= target (G9), Lambda
+    """Smallest gap [m] with exp(-Lambda(gap, 0)) >= target (G22), Lambda
     counting every crossing of the gap by the free motion (no clumps).
 
     A design value, so on the safe side of the best-estimate probability:

@@ -8,7 +8,7 @@ the mean position), the motion before each approach is the weaker for the
 impacts before it; where the pair forgets an impact before the next (yielded
 or dephasing buildings, a gap far from the mean), it is not.
 
-The model (docs/theory.md, G6-G7):
+The model (docs/theory.md, G10-G15):
 
 - *impacts* come at Rice's rate with the time cut, nu = (sigma_V / sigma_X)
   exp(-u^2 / 2) / (2 pi Phi(u)), u = d / sigma_X, at intervals taken as

@@ -2,7 +2,7 @@
 30, 35) and the equivalent stationary process of Michaelov et al. (2001) for
 non-stationary excitation (Eq. 26-29); and the expected largest |Y| of a
 response from its time-varying sigmas with Vanmarcke's clumps (the
-separation rules', docs/theory.md, G10).
+separation rules', docs/theory.md, G23-G24).
 
 Units: SI; rates in [1/s], durations in [s], variances in the response's
 units squared.

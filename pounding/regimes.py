@@ -1,6 +1,6 @@
 """Where an estimate lies among the regimes in which the recommended
 estimator's accuracy was measured against Monte Carlo, what was measured
-there, and the warnings it carries (docs/accuracy.md).
+there, and the warnings it carries (docs/accuracy.md; the residual's share: docs/theory.md, G26).
 
 The measured numbers are read from ``pounding/data/accuracy.json``, which
 ``validation/accuracy_data.py`` writes (with its seeds, cases and commit).

@@ -1,4 +1,4 @@
-"""The separation rules beside the design gap (docs/theory.md, G10): SRSS,
+"""The separation rules beside the design gap (docs/theory.md, G23-G25): SRSS,
 ABS and DDC combinations of each contact floor's expected peak |x|, the
 linearized floor's sigmas from rest with Vanmarcke's clumps."""
 
