@@ -45,11 +45,10 @@ import numpy as np
 from .crossing_kernels import (
     jump_memory,
     solve_dashpots,
-    vanmarcke_bandwidth,
     with_dashpot,
 )
 from .errors import ConvergenceError
-from .response import spectral_grid, spectral_moments, spectral_weights
+from .response import spectral_grid, spectral_weights
 
 __all__ = ["DampedMotion", "ImpactDamping", "impact_damping"]
 
@@ -174,7 +173,7 @@ def impact_damping(pair) -> ImpactDamping:
     feedback = 1j * omega * (r1 + r2)
     # Trapezoid weights, explicit: the kernels sum the damped spectrum many times.
     weights = spectral_weights()
-    moments = [float(moment) for moment in spectral_moments(psd)]
+    moments = [float(moment) for moment in pair.relative_displacement_moments]
     spectra = (
         weights,
         psd,
@@ -190,7 +189,7 @@ def impact_damping(pair) -> ImpactDamping:
         response.sigma_relative_velocity,
         pair.case.reduced_mass,
         pair.case.contact.restitution,
-        vanmarcke_bandwidth(*moments),
+        pair.bandwidth,
         spectra,
         _jump_modes(pair),
         float(np.max(np.abs(feedback))),

@@ -125,10 +125,15 @@ class LinearizedPair:
         return relative_displacement_psd(h1, h2, self.case.excitation.spectrum.psd(spectral_grid()))
 
     @cached_property
+    def relative_displacement_moments(self) -> np.ndarray:
+        """One-sided spectral moments lambda_0, lambda_1, lambda_2 of X (:attr:`relative_displacement_psd`)."""
+        return spectral_moments(self.relative_displacement_psd)
+
+    @cached_property
     def bandwidth(self) -> float:
         """Vanmarcke's q = sqrt(1 - lambda_1^2 / (lambda_0 lambda_2)) of X [-]:
         near 0 for a narrow-band (one-frequency) motion, up to 1 for a broad one."""
-        return float(vanmarcke_bandwidth(*spectral_moments(self.relative_displacement_psd)))
+        return float(vanmarcke_bandwidth(*self.relative_displacement_moments))
 
     @cached_property
     def floor_bandwidths(self) -> np.ndarray:

@@ -1,0 +1,51 @@
+"""The linearized pair owns what both closed forms take from it: one estimate linearizes once, builds one
+state space, solves the residual's response, the covariance from rest and each contact floor's FRFs once."""
+
+from __future__ import annotations
+
+import collections
+import functools
+
+import numpy as np
+import pytest
+
+import pounding.pair as pair_module
+from pounding import load_case
+from pounding.estimator import estimate
+from pounding.pair import LinearizedPair
+
+EXPENSIVE = ("linearize_pair", "pair_state_space", "residual_response", "time_varying_covariance",
+             "floor_response_and_receptance", "relative_displacement_psd", "impact_damping")
+
+
+@pytest.mark.parametrize("name", ["section5-T2-0.4", "section6-T2-0.4-nonstationary"])
+def test_one_estimate_computes_each_quantity_once(monkeypatch, name):
+    counts = collections.Counter()
+    for function in EXPENSIVE:
+        original = getattr(pair_module, function)
+
+        @functools.wraps(original)
+        def counted(*args, _original=original, _name=function, **kwargs):
+            counts[_name] += 1
+            return _original(*args, **kwargs)
+
+        monkeypatch.setattr(pair_module, function, counted)
+    estimate(load_case(name))
+    floors = 2  # one FRF and receptance per contact floor
+    assert counts == {**{function: 1 for function in EXPENSIVE}, "floor_response_and_receptance": floors}
+
+
+def test_a_pair_reused_gives_the_estimate_of_its_case():
+    case = load_case("section5-T2-0.4")
+    pair = LinearizedPair.of(case)
+    first, second, fresh = estimate(pair), estimate(pair, target_probability=0.9), estimate(case)
+    assert first.force_expected == fresh.force_expected and first.required_gap == fresh.required_gap
+    assert second.required_gap < first.required_gap  # a lower target asks a smaller gap, from the same pair
+    assert np.array_equal(first.crossings.sigma_x, second.crossings.sigma_x)
+
+
+def test_estimate_names_a_wrong_argument():
+    from pounding.errors import CaseError
+
+    with pytest.raises(CaseError, match="case: must be a Case"):
+        estimate("section5-T2-0.4")
