@@ -10,8 +10,9 @@ import pytest
 from pounding import CaseError, load_case, simulate_record
 from pounding.estimator import estimate, force_versus_gap
 from pounding.linearization import linearize_pair
+from pounding.pair import LinearizedPair
 from pounding.peaks import davenport_peak_factor
-from pounding.response import floor_statistics
+from tests.free_count import free_force
 
 
 def _with(case, gap=None, restitution=None):
@@ -30,7 +31,7 @@ def test_linearized_sigma_is_close_to_the_nonlinear_buildings(period_2):
     histories' once stationary (records of 120 s, the first 30 s left out)."""
     case = _with(load_case(f"section5-T2-{period_2}"), gap=10.0)
     case = dataclasses.replace(case, excitation=dataclasses.replace(case.excitation, duration=120.0))
-    statistics = floor_statistics(case, linearize_pair(case))
+    statistics = LinearizedPair.of(case).floor_statistics
     mean_squares = []
     for index in range(16):
         history = simulate_record(case, seed=11, index=index)
@@ -88,17 +89,17 @@ def test_michaelov_order_weighs_the_strong_motion_more_as_it_grows():
     with n1 towards sigma_inf, the strongest instant's; n1 = 3 is the default;
     outside its range n1 is named."""
     case = load_case("section5-T2-0.4-nonstationary")
-    linearized = linearize_pair(case)
-    sigma_inf = estimate(case, linearized=linearized).response.sigma_relative_velocity  # the paper's, linearized
-    equivalent = {n1: estimate(case, linearized=linearized, michaelov_n1=n1).paper for n1 in (1, 3, 20)}
+    pair = LinearizedPair.of(case)
+    sigma_inf = estimate(pair).response.sigma_relative_velocity  # the paper's, linearized
+    equivalent = {n1: estimate(pair, michaelov_n1=n1).paper for n1 in (1, 3, 20)}
     sigmas = [equivalent[n1].sigma_relative_velocity_equivalent for n1 in (1, 3, 20)]
     assert sigmas[0] < sigmas[1] < sigmas[2] < sigma_inf < 1.03 * sigmas[2]
     assert equivalent[20].duration_effective < equivalent[3].duration_effective < equivalent[1].duration_effective
-    default = estimate(case, linearized=linearized).paper
+    default = estimate(pair).paper
     assert default.michaelov_n1 == 3 and default.force_expected == equivalent[3].force_expected
     for bad in (0.0, 25, float("nan"), "3"):
         with pytest.raises(CaseError, match="michaelov_n1"):
-            estimate(case, linearized=linearized, michaelov_n1=bad)
+            estimate(pair, michaelov_n1=bad)
 
 
 def test_paper_exact_variance_option_is_the_time_varying_covariance():
@@ -203,7 +204,7 @@ def test_every_number_is_finite_and_in_range_over_the_claimed_ranges_and_beyond(
         force = curve.force_expected
         assert np.all(np.isfinite(force)) and np.all(force >= 0.0), case.name
         assert np.all(np.diff(curve.pounding_probability) <= 1e-12), case.name
-        free = estimate(case, impact_damping=False).gap_curve(gaps).force_expected
+        free = free_force(case, result.crossings, gaps, 81)  # the free count, as a gap curve counts
         assert np.all(force <= free * (1.0 + 1e-9)), case.name
         steps = np.diff(force)
         signs = np.sign(steps[np.abs(steps) > 1e-6 * force.max()])  # above the fixed point's tolerance
@@ -219,16 +220,47 @@ def test_every_number_is_finite_and_in_range_over_the_claimed_ranges_and_beyond(
 def test_no_relative_motion_is_named_not_divided_by():
     """Identical buildings never approach each other under one ground motion, and
     without ground motion nothing moves: both are named, not a ZeroDivisionError."""
-    from pounding.validation import _vary
+    from pounding.validation import varied_case
 
     base = load_case("section5-T2-0.4")
     for twins in (
-        _vary(base, elastic=True, periods=(0.5, 0.5)),
-        _vary(base, periods=(0.4, 0.4)),  # yielding
+        varied_case(base, elastic=True, periods=(0.5, 0.5)),
+        varied_case(base, periods=(0.4, 0.4)),  # yielding
         dataclasses.replace(load_case("section6-T2-0.4"), buildings=(load_case("section6-T2-0.4").buildings[0],) * 2),  # two storeys
     ):
         with pytest.raises(CaseError, match="^buildings: the two buildings move alike"):
             estimate(twins)
     with pytest.raises(CaseError, match="^excitation.G0: must be > 0"):
-        force_versus_gap(_vary(base, g0=0.0), [0.0, 0.01])
-    assert estimate(_vary(base, elastic=True, periods=(0.5, 0.51))).force_expected > 0.0  # nearly alike is fine
+        force_versus_gap(varied_case(base, g0=0.0), [0.0, 0.01])
+    assert estimate(varied_case(base, elastic=True, periods=(0.5, 0.51))).force_expected > 0.0  # nearly alike is fine
+
+
+def test_every_warning_and_accuracy_statement_is_short():
+    """Each warning and the measured accuracy are one or two short sentences,
+    at most 200 characters: on every preset, on each at a moderate and at a
+    rare gap (the linearization reused: it does not depend on the gap), and on
+    a yielding pair under a Clough-Penzien spectrum; between them every kind
+    of warning is met."""
+    from pounding import preset_names
+    from pounding.excitation import CloughPenzien
+
+    kinds = {"The relative motion is narrow-band", "Storeys near elastic-perfectly plastic", "The gap lies between",
+             "Pounding is rare at this gap", "The gap for 95 %", "A building yields and the spectrum"}
+    seen = set()
+    for name in preset_names():
+        pair = LinearizedPair.of(load_case(name))
+        results = [estimate(pair)]
+        sigma = results[0].sigma_relative_displacement
+        results += [estimate(LinearizedPair(_with(pair.case, gap=u * sigma), pair.buildings)) for u in (0.75, 1.5)]
+        for result in results:
+            assert len(result.measured_accuracy) <= 200, (name, result.measured_accuracy)
+            for warning in result.warnings:
+                assert len(warning) <= 200, (name, warning)
+                seen.update(kind for kind in kinds if warning.startswith(kind))
+    case = load_case("section5-T2-0.8")
+    s = case.excitation.spectrum
+    spectrum = CloughPenzien(s.G0, s.omega_g, s.xi_g, omega_f=2.0, xi_f=0.6)
+    result = estimate(dataclasses.replace(case, excitation=dataclasses.replace(case.excitation, spectrum=spectrum)))
+    assert len(result.measured_accuracy) <= 200 and all(len(w) <= 200 for w in result.warnings), result.warnings
+    seen.update(kind for kind in kinds for w in result.warnings if w.startswith(kind))
+    assert seen == kinds

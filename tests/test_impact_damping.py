@@ -14,29 +14,35 @@ from scipy.linalg import expm
 
 from pounding import load_case
 from pounding.estimator import estimate
+from pounding.gap_aware import gap_for_probability
 from pounding.impact_damping import impact_damping
-from pounding.linearization import linearize_pair, pair_state_space
+from pounding.pair import LinearizedPair
 from pounding.response import contact_output_matrix
 from pounding.structures import BoucWen
-from pounding.validation import _mdof_case, _vary
+from pounding.validation import mdof_case, varied_case
+from tests.free_count import free_force
 
 CASES = {
     "yielding one-storey pair": lambda: load_case("section5-T2-0.8"),
-    "elastic pair": lambda: _vary(load_case("section5-T2-0.4"), elastic=True, periods=(0.61, 0.48), g0=5.86, restitution=0.42),
-    "three-storey against two-storey": _mdof_case,
+    "elastic pair": lambda: varied_case(load_case("section5-T2-0.4"), elastic=True, periods=(0.61, 0.48), g0=5.86, restitution=0.42),
+    "three-storey against two-storey": mdof_case,
 }
 
 
 def _pair(case):
-    linearized = linearize_pair(case)
-    model = pair_state_space(case, linearized)
-    return linearized, model, impact_damping(case, linearized, model)
+    pair = LinearizedPair.of(case)
+    return pair.buildings, pair.state_space, impact_damping(pair)
+
+
+def _floors(case):
+    """The contact floors counted from 0."""
+    return tuple(level - 1 for level in case.contact.levels)
 
 
 def _with_dashpot(case, model, dashpot):
     """The pair's state space with a dashpot between the contact floors, written
     into the equations of motion: m1 v1' += -c (v1 - v2), m2 v2' += +c (v1 - v2)."""
-    outputs = contact_output_matrix(case, model)
+    outputs = contact_output_matrix(_floors(case), model)
     floor_1, floor_2 = int(np.flatnonzero(outputs[2])[0]), int(np.flatnonzero(outputs[3])[0])
     m1, m2 = case.contact_masses
     matrix = model.matrix.copy()
@@ -47,7 +53,7 @@ def _with_dashpot(case, model, dashpot):
 
 
 def _sigmas(case, model):
-    outputs = contact_output_matrix(case, model)
+    outputs = contact_output_matrix(_floors(case), model)
     rows = np.array([outputs[0] - outputs[1], outputs[2] - outputs[3]])
     return np.sqrt(np.diag(rows @ model.covariance() @ rows.T))
 
@@ -74,7 +80,7 @@ def test_memory_is_the_jump_response_averaged_over_exponential_intervals(kind):
     impact's velocity jump (scipy's expm), integrated over the intervals' law."""
     case = CASES[kind]()
     _, model, damping = _pair(case)
-    outputs = contact_output_matrix(case, model)
+    outputs = contact_output_matrix(_floors(case), model)
     m1, m2 = case.contact_masses
     jump = (-m2 * outputs[2] + m1 * outputs[3]) / (m1 + m2)  # V falls by 1, momentum kept
     rows = np.array([outputs[0] - outputs[1], outputs[2] - outputs[3]])
@@ -137,9 +143,9 @@ def test_the_damping_vanishes_with_the_dissipation_and_with_the_impacts():
     """Continuously: as e -> 1 the impacts take no energy, and as the gap
     leaves the motion's reach there are no impacts."""
     case = CASES["elastic pair"]()
-    near = impact_damping(case).damped([0.0]).ratio_velocity[0]
+    near = LinearizedPair.of(case).impact_damping.damped([0.0]).ratio_velocity[0]
     assert near < 0.8  # this pair remembers its impacts
-    losses = [1.0 - impact_damping(_vary(case, restitution=e)).damped([0.0]).ratio_velocity[0] for e in (0.9, 0.99, 0.999, 1.0)]
+    losses = [1.0 - LinearizedPair.of(varied_case(case, restitution=e)).impact_damping.damped([0.0]).ratio_velocity[0] for e in (0.9, 0.99, 0.999, 1.0)]
     assert losses[0] > losses[1] > losses[2] > 0.0 and losses[2] < 2e-3 and losses[3] == pytest.approx(0.0, abs=1e-12)
     _, _, damping = _pair(case)
     sigma = damping.sigma_relative_displacement
@@ -169,11 +175,13 @@ def test_the_free_count_keeps_the_probability_and_the_gap_for_the_target():
     """The first impact meets the free motion: the damping changes the force,
     not the pounding probability or the gap for the target probability."""
     case = CASES["elastic pair"]()
-    damped, free = estimate(case), estimate(case, impact_damping=False)
-    assert damped.pounding_probability == free.pounding_probability
-    assert damped.required_gap == free.required_gap
-    assert damped.impacting_velocity_ratio < 1.0 and free.impacting_velocity_ratio == 1.0
-    assert damped.force_expected < free.force_expected
+    damped = estimate(case)
+    free = dataclasses.replace(damped.crossings, damping=None)  # the free count
+    gap = np.array([case.contact.gap])
+    assert damped.pounding_probability == float(-math.expm1(-free.intensity(gap, np.zeros(1))[0, 0]))
+    assert damped.required_gap == gap_for_probability(free, damped.target_probability)
+    assert damped.impacting_velocity_ratio < 1.0 and free.damped(gap).ratio_velocity[0] == 1.0
+    assert damped.force_expected < free_force(case, damped.crossings, gap)[0]
 
 
 def test_gap_curve_agrees_with_single_estimates():
@@ -182,7 +190,7 @@ def test_gap_curve_agrees_with_single_estimates():
     gaps = np.array([0.0, 0.01, 0.03])
     curve = result.gap_curve(gaps)
     for gap, force in zip(gaps, curve.force_expected):
-        single = estimate(_vary(case, gap=gap))
+        single = estimate(varied_case(case, gap=gap))
         # the curve integrates on 81 speeds, the estimate on 121 (1e-4)
         assert force == pytest.approx(single.force_expected, rel=1e-3)
 

@@ -9,7 +9,8 @@ from scipy.integrate import quad, solve_ivp
 import pounding
 from pounding.errors import CaseError
 from pounding.excitation import ShinozukaSato
-from pounding.linearization import linearize_pair, pair_state_space
+from pounding.covariance_history import time_varying_covariance
+from pounding.pair import LinearizedPair
 from pounding.peaks import (
     EULER_GAMMA,
     davenport_peak_factor,
@@ -18,9 +19,7 @@ from pounding.peaks import (
     expected_absolute_peak,
     expected_peak,
     michaelov_variance,
-    time_varying_covariance,
 )
-from pounding.response import contact_covariance_history, response_lyapunov
 
 
 def _mean_of_extreme(crossings):
@@ -156,7 +155,7 @@ def test_michaelov_variance_matches_an_oscillator_under_modulated_white_noise(pe
     modulated white noise (the setting of Eq. 26): within 1 % of the peak; the
     printed C^2 would be off by a factor C^-4 (about 250)."""
     from pounding.linearization import lyapunov_covariance
-    from pounding.peaks import _bedrock
+    from pounding.covariance_history import _bedrock
 
     envelope = ShinozukaSato()
     omega0, xi, S0 = 2.0 * math.pi / period, 0.05, 1.0
@@ -173,8 +172,7 @@ def test_michaelov_variance_matches_an_oscillator_under_modulated_white_noise(pe
 
 def _stationary_pair(preset="section5-T2-0.4-nonstationary"):
     case = pounding.load_case(preset)
-    model = pair_state_space(case, linearize_pair(case))
-    return case, model
+    return case, LinearizedPair.of(case).state_space
 
 
 @pytest.mark.parametrize("modulation", ["bedrock", "ground"])
@@ -216,8 +214,9 @@ def test_ground_and_bedrock_modulation_nearly_agree_for_a_slow_envelope():
     0.1 s: modulating before or after the filter changes little."""
     case = pounding.load_case("section5-T2-0.4-nonstationary")
     times = np.linspace(0.0, 40.0, 401)
-    ground = contact_covariance_history(case, None, times, modulation="ground")
-    bedrock = contact_covariance_history(case, None, times, modulation="bedrock")
+    pair = LinearizedPair.of(case)
+    ground = pair.covariance_history(times, modulation="ground")
+    bedrock = pair.covariance_history(times, modulation="bedrock")
     v = np.array([0.0, 0.0, 1.0, -1.0, 0.0, 0.0])
     var_ground, var_bedrock = v @ ground @ v, v @ bedrock @ v
     assert np.max(np.abs(var_ground - var_bedrock)) < 0.02 * var_bedrock.max()
@@ -227,12 +226,12 @@ def test_eq28_equivalent_process_is_close_to_the_exact_one():
     """The paper's shortcut sigma^2(t) = A^2(t) sigma_inf^2 (Eq. 28) against the
     exact time-varying variance of the relative velocity, through Eq. 29."""
     case = pounding.load_case("section5-T2-0.4-nonstationary")
-    linearized = linearize_pair(case)
+    pair = LinearizedPair.of(case)
     times = np.linspace(0.0, case.excitation.duration, 801)
-    history = contact_covariance_history(case, linearized, times)
+    history = pair.covariance_history(times)
     v = np.array([0.0, 0.0, 1.0, -1.0, 0.0, 0.0])
     exact = equivalent_stationary(v @ history @ v, times)
-    stationary = response_lyapunov(case, linearized).sigma_relative_velocity ** 2
+    stationary = pair.stationary_response.sigma_relative_velocity ** 2
     shortcut = equivalent_stationary(envelope_variance(case.excitation.envelope, times, stationary), times)
     assert shortcut[0] == pytest.approx(exact[0], rel=0.02)
     assert shortcut[1] == pytest.approx(exact[1], rel=0.02)
@@ -244,7 +243,7 @@ def test_switched_on_covariance_matches_direct_integration(preset):
     filter already stationary): the closed form by eigenvectors, and the
     stepped one it falls back to, against solve_ivp of dP/dt = A P + P A^T + Q."""
     from pounding.linearization.lyapunov import lyapunov_covariance
-    from pounding.peaks import _stepped
+    from pounding.covariance_history import _stepped
 
     _, model = _stationary_pair(preset)
     A, Q, n, f = model.matrix, model.noise_covariance, model.size, model.filter_states

@@ -9,20 +9,12 @@ import pytest
 from scipy.linalg import expm
 
 from pounding import load_case
-from pounding.linearization import linearize_pair, pair_state_space
-from pounding.linearization.residual import (
-    residual_chaos,
-    residual_correlation,
-    residual_response,
-    residual_response_sampled,
-)
-from pounding.response import (
-    contact_output_matrix,
-    response_lyapunov,
-    response_with_residual,
-)
+from pounding.pair import LinearizedPair
+from pounding.linearization.residual import residual_chaos, residual_correlation, residual_response
+from pounding.linearization.residual_sampled import residual_response_sampled
+from pounding.response import contact_output_matrix
 from pounding.simulation import simulate_record
-from pounding.validation import _vary
+from pounding.validation import varied_case
 
 
 def _bouc_wen_rate(law, velocity, z):
@@ -31,9 +23,8 @@ def _bouc_wen_rate(law, velocity, z):
 
 @pytest.fixture(scope="module")
 def pair():
-    case = load_case("section5-T2-0.8")
-    linearized = linearize_pair(case)
-    return case, linearized, pair_state_space(case, linearized)
+    linearized = LinearizedPair.of(load_case("section5-T2-0.8"))
+    return linearized.case, linearized.buildings, linearized.state_space
 
 
 def _storey_statistics(model, linearized, building, storey):
@@ -97,7 +88,7 @@ def test_residual_response_against_a_monte_carlo_of_the_linear_pair(pair):
     against the time stepping of the linearized pair with the residual
     evaluated along its own sampled motion and fed into the z equations."""
     case, linearized, model = pair
-    rows = contact_output_matrix(case, model)
+    rows = contact_output_matrix(tuple(level - 1 for level in case.contact.levels), model)
     outputs = np.array([rows[0] - rows[1], rows[2] - rows[3]])
     closed_form = np.diag(residual_response(model, linearized, outputs))
     sampled = residual_response_sampled(model, linearized, outputs, trajectories=600, duration=14.0)
@@ -105,9 +96,9 @@ def test_residual_response_against_a_monte_carlo_of_the_linear_pair(pair):
 
 
 def test_elastic_pairs_have_no_residual():
-    case = _vary(load_case("section5-T2-0.4"), elastic=True)
-    linear = response_lyapunov(case)
-    corrected = response_with_residual(case)
+    pair = LinearizedPair.of(varied_case(load_case("section5-T2-0.4"), elastic=True))
+    linear = pair.stationary_response
+    corrected = pair.response_with_residual
     np.testing.assert_array_equal(corrected.covariance, linear.covariance)
 
 
@@ -118,8 +109,8 @@ def test_residual_vanishes_with_the_amplitude():
     base = load_case("section5-T2-0.8")
     shares = []
     for factor in (1e-2, 1e-4, 1e-6, 1e-8):
-        case = _vary(base, g0=factor)
-        shares.append(response_with_residual(case).sigma_relative_displacement / response_lyapunov(case).sigma_relative_displacement - 1.0)
+        pair = LinearizedPair.of(varied_case(base, g0=factor))
+        shares.append(pair.response_with_residual.sigma_relative_displacement / pair.stationary_response.sigma_relative_displacement - 1.0)
     assert shares == sorted(shares, reverse=True)
     assert shares[0] > 0.1 and shares[-1] < 1e-4
 
@@ -128,8 +119,8 @@ def test_residual_brings_sigma_x_of_weakly_yielding_buildings_to_the_simulation(
     """At a hundredth of the paper's intensity the Section 5 pair (n = 1) still
     yields a little and drifts; the linearization misses 16 % of the simulated
     sigma_X (records keeping the spectrum's low end, without contact), the
-    residual's response brings it within 6 % (documented in docs/estimator.md)."""
-    case = _vary(load_case("section5-T2-0.8"), g0=0.01)
+    residual's response brings it within 6 % (documented in validation/HISTORY.md)."""
+    case = varied_case(load_case("section5-T2-0.8"), g0=0.01)
     case = dataclasses.replace(
         case,
         excitation=dataclasses.replace(case.excitation, synthesis_factor=8, duration=40.0),
@@ -142,8 +133,9 @@ def test_residual_brings_sigma_x_of_weakly_yielding_buildings_to_the_simulation(
         settled = history.time > 10.0
         squares.append(np.mean((history.displacement[settled, first] - history.displacement[settled, second]) ** 2))
     simulated = math.sqrt(np.mean(squares))
-    linear = response_lyapunov(case).sigma_relative_displacement
-    corrected = response_with_residual(case).sigma_relative_displacement
+    pair = LinearizedPair.of(case)
+    linear = pair.stationary_response.sigma_relative_displacement
+    corrected = pair.response_with_residual.sigma_relative_displacement
     assert linear < 0.9 * simulated
     assert abs(corrected / simulated - 1.0) < 0.08
 
@@ -154,7 +146,8 @@ def test_residual_adds_variance_and_decoheres_the_frames():
     frames' velocities are less coherent (documented: 0.85 linearized, 0.80
     simulated)."""
     case = load_case("section6-T2-0.8")
-    linear, corrected = response_lyapunov(case), response_with_residual(case)
+    pair = LinearizedPair.of(case)
+    linear, corrected = pair.stationary_response, pair.response_with_residual
     assert np.all(np.diag(corrected.covariance) >= np.diag(linear.covariance))
 
     def coherence(response):

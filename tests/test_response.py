@@ -10,15 +10,8 @@ from scipy.integrate import quad
 import pounding
 from pounding.excitation import CloughPenzien
 from pounding.linearization import linearize_pair
-from pounding.response import (
-    ContactResponse,
-    floor_statistics,
-    frequency_response,
-    psd_relative_velocity,
-    response,
-    response_frequency,
-    response_lyapunov,
-)
+from pounding.pair import LinearizedPair
+from pounding.response import ContactResponse, frequency_response, response_frequency
 
 DERIVED = (
     "sigma_displacement",
@@ -43,10 +36,9 @@ def _clough_penzien(case):
 
 @pytest.mark.parametrize("preset", ["section5-T2-0.4", "section6-T2-0.4", "section5-T2-0.8-nonstationary"])
 def test_lyapunov_and_frequency_routes_agree(preset):
-    case = pounding.load_case(preset)
-    linearized = linearize_pair(case)
-    lyapunov = response_lyapunov(case, linearized)
-    frequency = response_frequency(case, linearized)
+    pair = LinearizedPair.of(pounding.load_case(preset))
+    lyapunov = pair.stationary_response
+    frequency = pair.response_frequency()
     for name in DERIVED:
         np.testing.assert_allclose(getattr(frequency, name), getattr(lyapunov, name), rtol=1e-6, err_msg=name)
     scale = np.sqrt(np.outer(np.diag(lyapunov.covariance), np.diag(lyapunov.covariance)))
@@ -58,16 +50,17 @@ def test_routes_agree_at_any_pair_of_contact_floors(levels):
     """Three storeys beside two, contact at any floor of each: the state-space
     outputs and the frequency route pick their floors by separate code, so an
     indexing slip in either fails here."""
-    from pounding.validation import _mdof_case
+    from pounding.validation import mdof_case
 
-    case = _mdof_case()
+    case = mdof_case()
     case = dataclasses.replace(case, contact=dataclasses.replace(case.contact, levels=levels))
-    linearized = linearize_pair(case)
-    lyapunov, frequency = response_lyapunov(case, linearized), response_frequency(case, linearized)
+    pair = LinearizedPair.of(case)
+    lyapunov, frequency = pair.stationary_response, pair.response_frequency()
     for name in DERIVED:
         np.testing.assert_allclose(getattr(frequency, name), getattr(lyapunov, name), rtol=1e-6, err_msg=name)
     # The floor asked for, not another: each building's floors sway more the higher they are.
-    lowest = response_lyapunov(dataclasses.replace(case, contact=dataclasses.replace(case.contact, levels=(1, 1))), linearized)
+    lowest = LinearizedPair(dataclasses.replace(case, contact=dataclasses.replace(case.contact, levels=(1, 1))), pair.buildings)
+    lowest = lowest.stationary_response
     for building, level in enumerate(levels):
         if level > 1:
             assert lyapunov.sigma_displacement[building] > 1.5 * lowest.sigma_displacement[building]
@@ -76,13 +69,12 @@ def test_routes_agree_at_any_pair_of_contact_floors(levels):
 
 
 def test_routes_agree_under_clough_penzien():
-    case = _clough_penzien(pounding.load_case("section6-T2-0.4"))
-    linearized = linearize_pair(case)
-    lyapunov, frequency = response_lyapunov(case, linearized), response_frequency(case, linearized)
+    pair = LinearizedPair.of(_clough_penzien(pounding.load_case("section6-T2-0.4")))
+    lyapunov, frequency = pair.stationary_response, pair.response_frequency()
     for name in DERIVED:
         np.testing.assert_allclose(getattr(frequency, name), getattr(lyapunov, name), rtol=1e-6, err_msg=name)
     # The high-pass filter takes out low-frequency motion: less displacement than Kanai-Tajimi.
-    kanai_tajimi = response_lyapunov(pounding.load_case("section6-T2-0.4"))
+    kanai_tajimi = LinearizedPair.of(pounding.load_case("section6-T2-0.4")).stationary_response
     assert lyapunov.sigma_displacement[0] < kanai_tajimi.sigma_displacement[0]
 
 
@@ -131,12 +123,11 @@ def test_frf_of_two_storeys_solves_the_equations_of_motion():
 
 
 def test_psd_of_relative_velocity_integrates_to_its_variance():
-    case = pounding.load_case("section6-T2-0.4")
-    linearized = linearize_pair(case)
-    expected = response_lyapunov(case, linearized).sigma_relative_velocity ** 2
+    pair = LinearizedPair.of(pounding.load_case("section6-T2-0.4"))
+    expected = pair.stationary_response.sigma_relative_velocity ** 2
 
     def density(w):
-        return float(psd_relative_velocity(case, linearized, np.array([w]))[0])
+        return float(pair.psd_relative_velocity(np.array([w]))[0])
 
     half = sum(
         quad(density, a, b, limit=400, epsrel=1e-10)[0]
@@ -144,7 +135,7 @@ def test_psd_of_relative_velocity_integrates_to_its_variance():
     )
     assert 2.0 * half == pytest.approx(expected, rel=1e-6)
     omega = np.linspace(-30.0, 30.0, 7)
-    psd = psd_relative_velocity(case, linearized, omega)
+    psd = pair.psd_relative_velocity(omega)
     np.testing.assert_allclose(psd, psd[::-1], rtol=1e-12)  # two-sided: even in omega
     assert np.all(psd >= 0.0)
 
@@ -155,7 +146,7 @@ def test_identical_buildings_move_together():
     cancel the variances)."""
     case = pounding.load_case("section5-T2-0.4")
     twins = dataclasses.replace(case, buildings=(case.buildings[0], case.buildings[0]))
-    result = response_lyapunov(twins)
+    result = LinearizedPair.of(twins).stationary_response
     assert result.sigma_relative_displacement < 1e-6 * result.sigma_displacement[0]
     assert result.sigma_relative_velocity < 1e-6 * result.sigma_velocity[0]
 
@@ -176,16 +167,17 @@ def test_contact_response_properties_from_a_covariance():
 
 
 def test_stationary_displacement_and_velocity_are_uncorrelated():
-    result = response_lyapunov(pounding.load_case("section6-T2-0.4"))
+    result = LinearizedPair.of(pounding.load_case("section6-T2-0.4")).stationary_response
     assert abs(result.correlation_relative) < 1e-9
     assert abs(result.covariance[0, 2]) < 1e-9 * result.sigma_displacement[0] * result.sigma_velocity[0]
 
 
 def test_floor_statistics_match_the_contact_response():
     case = pounding.load_case("section6-T2-0.4")
-    linearized = linearize_pair(case)
-    floors = floor_statistics(case, linearized)
-    contact = response_lyapunov(case, linearized)
+    pair = LinearizedPair.of(case)
+    linearized = pair.buildings
+    floors = pair.floor_statistics
+    contact = pair.stationary_response
     level_1, level_2 = case.contact.levels
     assert floors.displacement[0][level_1 - 1] == pytest.approx(contact.sigma_displacement[0], rel=1e-12)
     assert floors.velocity[1][level_2 - 1] == pytest.approx(contact.sigma_velocity[1], rel=1e-12)
@@ -194,8 +186,12 @@ def test_floor_statistics_match_the_contact_response():
     assert len(floors.displacement[0]) == 2 and len(floors.displacement[1]) == 1
 
 
-def test_response_dispatch():
-    case = pounding.load_case("section5-T2-0.4")
-    assert response(case).method == "lyapunov"
-    with pytest.raises(ValueError, match="method"):
-        response(case, method="monte-carlo")
+def test_each_route_names_its_method():
+    """The response says which route gave it (``response(case, method=...)``,
+    which dispatched on the name, is gone: each route is its own attribute)."""
+    pair = LinearizedPair.of(pounding.load_case("section5-T2-0.4"))
+    assert pair.stationary_response.method == "lyapunov"
+    assert pair.response_with_residual.method == "lyapunov+residual"
+    assert pair.response_frequency().method == "frequency"
+    frequency = response_frequency(pair.case, pair.buildings, pair.state_space)  # the pure function, the same route
+    np.testing.assert_array_equal(frequency.covariance, pair.response_frequency().covariance)
