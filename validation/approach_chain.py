@@ -1,6 +1,6 @@
 """What the impacts add to the largest approach speed: a chain of approaches.
 
-Reproduces the table of "A chain of approaches" in docs/estimator.md. A
+Reproduces the table of "A chain of approaches" in validation/HISTORY.md. A
 diagnosis, not part of the estimator.
 
 After an impact at speed v the pair leaves the gap d at e v (the law's
@@ -31,40 +31,44 @@ free motion's given X = d, V = v, against the impacting pair's own: its states
 just before its impacts, regressed on the approach speed). Here the gap is
 taken in the linearized pair's own sigma_X, as the simulation sees it.
 
-    python3 docs/approach_chain.py         # 8 cases, about 3 min
-    python3 docs/approach_chain.py --all   # every stationary case of the grid, about 15 min
-    python3 docs/approach_chain.py --first-return   # the chain's two approximations, 8 cases, about 20 min
+The estimator's count is taken on the free motion (without the impacts'
+damping, :func:`validation.free_count.free_estimate`), as it was measured.
+
+    python3 -m validation.approach_chain         # 8 cases, about 3 min
+    python3 -m validation.approach_chain --all   # every stationary case of the grid, about 15 min
+    python3 -m validation.approach_chain --first-return   # the chain's two approximations, 8 cases, about 20 min
 """
 
 from __future__ import annotations
 
+import argparse
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
+from scipy.linalg import expm
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from pounding.gap_aware import expected_maximum
+from pounding.pair import LinearizedPair
+from pounding.validation import accuracy_cases
 
-from clump_models import _phi, pair_lags, pair_rows  # noqa: E402  (beside this script)
-from error_decomposition import RATE_CASES, approach_speeds, largest_expected_power, rice_expected_power  # noqa: E402
-
-from scipy.linalg import expm  # noqa: E402
-
-from pounding.estimator import _expected_maximum, estimate  # noqa: E402
-from pounding.validation import accuracy_cases  # noqa: E402
+from .clump_models import pair_lags, pair_rows, phi
+from .error_decomposition import RATE_CASES, approach_speeds, largest_expected_power, rice_expected_power
+from .free_count import free_estimate, linearized
+from .sizes import first
 
 SPEEDS = np.linspace(0.0, 6.0, 121)  # [sigma_V]
 PERIODS, LAGS = 12.0, 480  # the first approach is looked for over 12 mean periods
 CHAINS, RECORDS, SEED = 4000, 200, 11
 
 
-def linearized_pair(case):
+def linearized_pair(case_or_pair):
     """The linearized pair's state space, the rows of X and V over its state, and
     the impact's change of state per unit approach speed V = v [1/(m/s)]: the
     colliding floors' velocities change by -(1 + e) m2 / (m1 + m2) v and
     +(1 + e) m1 / (m1 + m2) v (momentum kept, V -> -e V)."""
-    model, outputs, rows = pair_rows(case)
+    pair = linearized(case_or_pair)
+    case = pair.case
+    model, outputs, rows = pair_rows(pair)
     m1, m2 = case.contact_masses
     jump = (1.0 + case.contact.restitution) * (-m2 * outputs[2] + m1 * outputs[3]) / (m1 + m2)  # the floors' velocity rows are states
     return model, rows, jump
@@ -132,33 +136,35 @@ def first_crossing(lags, u: float, mean: np.ndarray, cov: np.ndarray) -> np.ndar
     each lag: Rice's intensity of upward crossings of u times the probability of
     none before (Poisson)."""
     k11 = np.maximum(cov[:, 0, 0], 1e-12)
-    level = _phi((u - mean[:, 0]) / np.sqrt(k11)) / np.sqrt(k11)
+    level = phi((u - mean[:, 0]) / np.sqrt(k11)) / np.sqrt(k11)
     mu = mean[:, 1] + cov[:, 1, 0] / k11 * (u - mean[:, 0])
     sd = np.sqrt(np.maximum(cov[:, 1, 1] - cov[:, 1, 0] ** 2 / k11, 1e-12))
     speed = SPEEDS[None, :]
-    rice = lags.omega * level[:, None] * speed * _phi((speed - mu[:, None]) / sd[:, None]) / sd[:, None]
+    rice = lags.omega * level[:, None] * speed * phi((speed - mu[:, None]) / sd[:, None]) / sd[:, None]
     total = np.trapezoid(rice, SPEEDS, axis=1)
     steps = np.diff(lags.lags)
     none_before = np.exp(-np.concatenate([[0.0], np.cumsum(0.5 * (total[1:] + total[:-1]) * steps)]))
     return rice * none_before[:, None]
 
 
-def chain_expected_power(lags, u: float, restart: float, duration: float, power: float, jump: np.ndarray | None = None) -> float:
-    """E[V_max^p] / sigma_V^p over ``duration`` [s] of the chain whose motion
+def chain_expected_power(lags, u: float, restart: float, duration: float, power: float, jump: np.ndarray | None = None,
+                         chains: int = CHAINS) -> float:
+    """E[V_max^p] / sigma_V^p over ``duration`` [s] of ``chains`` chains whose motion
     restarts from (u, restart x v) after an approach at v, or, given ``jump``
     (:func:`jump_response`), from the whole state at the approach plus the jump."""
-    return sampled_chain([first_approach(lags, u, restart * v, None if jump is None else jump * v) for v in SPEEDS], lags, u, duration, power)
+    return sampled_chain([first_approach(lags, u, restart * v, None if jump is None else jump * v) for v in SPEEDS], lags, u,
+                         duration, power, chains)
 
 
-def sampled_chain(densities, lags, u: float, duration: float, power: float) -> float:
+def sampled_chain(densities, lags, u: float, duration: float, power: float, chains: int = CHAINS) -> float:
     """E[V_max^p] / sigma_V^p of the chain whose next approach after one at
     SPEEDS[i] (in sigma_V) has the density ``densities[i]`` over (lag, speed)."""
     step = (lags.lags[1] - lags.lags[0]) * (SPEEDS[1] - SPEEDS[0])
     tables = [np.cumsum(density.ravel() * step) for density in densities]
     fresh_rate = lags.omega / (2.0 * math.pi) * math.exp(-0.5 * u * u)  # Rice's, for a motion that has forgotten
     rng = np.random.default_rng(SEED)
-    largest = np.zeros(CHAINS)
-    for k in range(CHAINS):
+    largest = np.zeros(chains)
+    for k in range(chains):
         time = rng.exponential(1.0 / fresh_rate)
         speed = math.sqrt(-2.0 * math.log(1.0 - rng.random()))  # Rayleigh
         while time < duration:
@@ -213,26 +219,28 @@ def _whole_state_density(pair, lags, propagators, u: float, start: np.ndarray, s
     covariance = model.covariance()
     sigma = np.sqrt(np.diag(rows @ covariance @ rows.T))
     mean = np.einsum("ij,ljk,k->li", rows, propagators, start) / sigma
-    lagged = np.einsum("ij,ljk,km,lnm,pn->lip", rows, propagators, spread - covariance, propagators, rows) + rows @ covariance @ rows.T
+    # optimize: the five factors contracted pairwise (the naive loop took 25 ms a call; the same to 1e-15).
+    lagged = np.einsum("ij,ljk,km,lnm,pn->lip", rows, propagators, spread - covariance, propagators, rows, optimize=True)
+    lagged = lagged + rows @ covariance @ rows.T
     return first_crossing(lags, u, mean, lagged / np.outer(sigma, sigma))
 
 
-def first_return_table(records: int = 4000) -> None:
+def first_return_table(records: int = 4000, cases: int | None = None, chains: int = CHAINS) -> None:
     """The chain's two approximations, measured on the linearized pair with
     instantaneous impacts: the law of the next approach after an impact
     (Poisson, from the exact state after the impact, against the exact first
     crossing) and the state before an impact (the free motion's given X = d,
     V = v, against the impacting pair's own, a regression on v of the states
-    sampled before its impacts after the first 5 s)."""
+    sampled before its impacts after the first 5 s). ``records`` paths of the linearized pair,
+    the first ``cases`` of :data:`FIRST_RETURN_CASES` (all for None), ``chains`` chains."""
     print("| case | gap / sigma_X | first return, median (mean periods) | P(return faster than sigma_V): exact / chain's law "
           "| P(faster than 2 sigma_V): exact / chain's law | impacts add: linearized pair | whole-state chain "
           "| whole-state chain, the impacting pair's own state before an impact |")
     print("|---|---|---|---|---|---|---|---|")
-    for case in accuracy_cases():
-        if case.name not in FIRST_RETURN_CASES:
-            continue
+    for case in first((case for case in accuracy_cases() if case.name in FIRST_RETURN_CASES), cases):
         power = 1.0 if case.contact.model == "linear" else 1.2
-        pair = linearized_pair(case)
+        linearization = LinearizedPair.of(case)
+        pair = linearized_pair(linearization)
         model, rows, jump = pair
         covariance = model.covariance()
         sigma = np.sqrt(np.diag(rows @ covariance @ rows.T))
@@ -240,7 +248,7 @@ def first_return_table(records: int = 4000) -> None:
         largest, before, speeds = _linear_pair_paths(case, pair, True, records, 0.002, keep_after=SETTLED)
         free_largest = _linear_pair_paths(case, pair, False, records, 0.002)
         linear = np.mean(largest**power) / np.mean(free_largest**power)
-        lags = pair_lags(case, PERIODS, LAGS)
+        lags = pair_lags(linearization, PERIODS, LAGS)
         propagators = np.array([expm(model.matrix * lag) for lag in lags.lags])
         pick = np.random.default_rng(SEED).choice(len(speeds), min(1500, len(speeds)), replace=False)
         after = before[pick] + np.outer(speeds[pick], jump)
@@ -249,47 +257,62 @@ def first_return_table(records: int = 4000) -> None:
         law = np.mean([np.trapezoid(density, lags.lags, axis=0) for density in laws], axis=0)  # over speed
         faster = [(np.mean(exact > level * sigma[1]), np.trapezoid(law[SPEEDS >= level], SPEEDS[SPEEDS >= level])) for level in (1.0, 2.0)]
         duration = case.excitation.duration
-        free = chain_expected_power(lags, u, 1.0, duration, power)
-        whole = chain_expected_power(lags, u, 1.0, duration, power, jump_response(pair, lags)) / free
+        free = chain_expected_power(lags, u, 1.0, duration, power, chains=chains)
+        whole = chain_expected_power(lags, u, 1.0, duration, power, jump_response(pair, lags), chains) / free
         design = np.column_stack([np.ones_like(speeds), speeds])
         fit, *_ = np.linalg.lstsq(design, before, rcond=None)
         residual = before - design @ fit
         spread = residual.T @ residual / len(speeds)
         own = sampled_chain([_whole_state_density(pair, lags, propagators, u, fit[0] + (fit[1] + jump) * v * sigma[1], spread) for v in SPEEDS],
-                            lags, u, duration, power) / free
+                            lags, u, duration, power, chains) / free
         period = 2.0 * math.pi / lags.omega
         print(f"| {case.name} | {u:.2f} | {np.nanmedian(lag) / period:.3f} | " + " | ".join(f"{e:.3f} / {c:.3f}" for e, c in faster)
               + f" | {linear - 1:+.1%} | {whole - 1:+.1%} | {own - 1:+.1%} |", flush=True)
 
 
-def main() -> None:
+TABLES = ("chain", "first-return")
+
+
+def main(table: str = "chain", cases: int | None = None, every_case: bool = False, records: int = RECORDS,
+         chains: int = CHAINS, paths: int = 4000) -> None:
+    """Print ``table`` (one of :data:`TABLES`) over the first ``cases`` (all for None) of the
+    stationary :data:`~validation.error_decomposition.RATE_CASES` (``every_case``: of every
+    stationary case of the grid) or of :data:`FIRST_RETURN_CASES`; ``records`` simulated
+    records, ``chains`` chains and ``paths`` paths of the linearized pair with instantaneous impacts."""
+    if table == "first-return":
+        first_return_table(paths, cases, chains)
+        return
     print("| case | q | gap / sigma_X | impacts add, simulated | linearized pair, instantaneous impacts | chain of approaches "
           "| chain, whole state | time cut: estimator / Rice |")
     print("|---|---|---|---|---|---|---|---|")
-    for case in accuracy_cases():
-        if not case.excitation.stationary or ("--all" not in sys.argv[1:] and case.name not in RATE_CASES):
-            continue  # the chains and the linearized simulation are of stationary motion
-        result = estimate(case, impact_damping=False)
+    # The chains and the linearized simulation are of stationary motion.
+    chosen = (case for case in accuracy_cases() if case.excitation.stationary and (every_case or case.name in RATE_CASES))
+    for case in first(chosen, cases):
+        linearization = LinearizedPair.of(case)
+        result = free_estimate(linearization)
         power = 1.0 if case.contact.model == "linear" else 1.2
         u = case.contact.gap / result.sigma_relative_displacement
-        impacting, free_motion = approach_speeds(case, RECORDS)
+        impacting, free_motion = approach_speeds(case, records)
         simulated = [largest_expected_power(group, power) for group in (impacting, free_motion)]
-        lags = pair_lags(case, PERIODS, LAGS)
+        lags = pair_lags(linearization, PERIODS, LAGS)
         duration = case.excitation.duration
-        free = chain_expected_power(lags, u, 1.0, duration, power)
-        chain = chain_expected_power(lags, u, -case.contact.restitution, duration, power) / free
-        pair = linearized_pair(case)
-        whole = chain_expected_power(lags, u, 1.0, duration, power, jump_response(pair, lags)) / free
+        free = chain_expected_power(lags, u, 1.0, duration, power, chains=chains)
+        chain = chain_expected_power(lags, u, -case.contact.restitution, duration, power, chains=chains) / free
+        pair = linearized_pair(linearization)
+        whole = chain_expected_power(lags, u, 1.0, duration, power, jump_response(pair, lags), chains) / free
         gap = np.array([case.contact.gap])
-        cut = _expected_maximum(result.crossings, gap, lambda v: v**power, power, result.crossings.damped(gap))[0]
-        linear = linear_impacts_expected_power(case, pair, power)
+        cut = expected_maximum(result.crossings, gap, lambda v: v**power, power, result.crossings.damped(gap))[0]
+        linear = linear_impacts_expected_power(case, pair, power, paths)
         print(f"| {case.name} | {result.crossings.bandwidth:.2f} | {u:.2f} | {simulated[0] / simulated[1] - 1:+.1%} "
               f"| {linear[0] / linear[1] - 1:+.1%} | {chain - 1:+.1%} "
               f"| {whole - 1:+.1%} | {cut / rice_expected_power(result, power) - 1:+.1%} |", flush=True)
 
 
 if __name__ == "__main__":
-    if "--first-return" in sys.argv[1:]:
-        first_return_table()
-    else:
-        main()
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument("--all", action="store_true", help="every stationary case of the grid")
+    group.add_argument("--first-return", dest="table", action="store_const", const="first-return", default="chain",
+                       help="the chain's two approximations")
+    arguments = parser.parse_args()
+    main(arguments.table, every_case=arguments.all)

@@ -1,7 +1,7 @@
 """Clumps of crossings: Vanmarcke's factor against a conditional count.
 
 Reproduces the tables of "Clumps: Vanmarcke's factor against a conditional
-count" in docs/estimator.md. A diagnosis, not part of the estimator.
+count" in validation/HISTORY.md. A diagnosis, not part of the estimator.
 
 The *conditional count* takes an approach faster than v at t (X up-crosses the
 gap d with V > v) as the start of a clump when no such approach happened in the
@@ -15,39 +15,39 @@ not being in a clump (r^2 = u^2 + rho^2), capped at Rice's rate.
 
 Vanmarcke's factor is put beside it with the estimator's constant sqrt(pi / 2)
 (his, derived for crossings of +-d) and with sqrt(2 pi), what the same
-derivation gives for crossings of d alone.
+derivation gives for crossings of d alone. The counts are compared on the
+free motion (the largest approach counted without the impacts' damping,
+:func:`validation.free_count.free_estimate`), but with ``--damped``.
 
-    python3 docs/clump_models.py           # the free motion of 5 elastic pairs, about 3 min
-    python3 docs/clump_models.py --grid    # the estimator's grid, about 30 min
-    python3 docs/clump_models.py --free-grid   # the grid's free motion, about 3 min
-    python3 docs/clump_models.py --draw 2026   # a random draw of docs/out_of_sample.py, by regime, about 45 min
-    python3 docs/clump_models.py --damped 2026 2027 2028   # the conditional count with the impacts' damping,
+    python3 -m validation.clump_models           # the free motion of 5 elastic pairs, about 3 min
+    python3 -m validation.clump_models --grid    # the estimator's grid, about 30 min
+    python3 -m validation.clump_models --free-grid   # the grid's free motion, about 3 min
+    python3 -m validation.clump_models --draw 2026   # a random draw of validation.out_of_sample, by regime, about 45 min
+    python3 -m validation.clump_models --damped 2026 2027 2028   # the conditional count with the impacts' damping,
                                                # the grid and the draws, by regime and by kind of building,
                                                # about 10 min per draw
 """
 
 from __future__ import annotations
 
+import argparse
 import dataclasses
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 from scipy.linalg import expm
 from scipy.special import erfc
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from pounding import load_case, simulate
+from pounding.excitation import ground_accelerations
+from pounding.pair import LinearizedPair
+from pounding.regimes import REGIMES
+from pounding.validation import accuracy_cases, random_cases, varied_case
 
-from impact_damping import ORDER, measured_cases  # noqa: E402  (beside this script)
-from error_decomposition import ONE_SIDED, contact_motion, rice_expected_power, upcrossing_speeds, vanmarcke_clumps  # noqa: E402  (beside this script)
-
-import pounding.estimator as estimator  # noqa: E402
-from pounding import load_case, simulate  # noqa: E402
-from pounding.excitation import ground_accelerations  # noqa: E402
-from pounding.linearization import linearize_pair, pair_state_space  # noqa: E402
-from pounding.response import contact_output_matrix  # noqa: E402
-from pounding.validation import _vary, accuracy_cases, random_cases  # noqa: E402
+from .error_decomposition import ONE_SIDED, contact_motion, rice_expected_power, upcrossing_speeds, vanmarcke_clumps
+from .free_count import free_estimate, linearized
+from .impact_damping_study import ORDER, measured_cases
+from .sizes import first
 
 SEED = 11
 FREE_RECORDS, GRID_RECORDS = 3000, 300
@@ -57,11 +57,13 @@ WINDOW = 1.5  # mean periods
 SPEEDS = np.linspace(0.0, 10.0, 201)  # rho' grid [sigma_V]
 
 
-def _q(x):
+def normal_tail(x):
+    """P(U > x), U standard normal."""
     return 0.5 * erfc(x / math.sqrt(2.0))
 
 
-def _phi(x):
+def phi(x):
+    """The standard normal density."""
     return np.exp(-0.5 * x * x) / math.sqrt(2.0 * math.pi)
 
 
@@ -79,18 +81,18 @@ class Lags:
         return np.transpose(self.before, (0, 2, 1))
 
 
-def pair_rows(case, linearized=None):
+def pair_rows(case_or_pair):
     """The linearized pair's state space, its contact-floor output rows
-    (:func:`~pounding.response.contact_output_matrix`) and the rows of X and V;
-    ``linearized`` (from :func:`~pounding.linearization.linearize_pair`) if already at hand."""
-    model = pair_state_space(case, linearize_pair(case) if linearized is None else linearized)
-    outputs = contact_output_matrix(case, model)
-    return model, outputs, np.array([outputs[0] - outputs[1], outputs[2] - outputs[3]])
+    (:attr:`~pounding.pair.LinearizedPair.contact_outputs`) and the rows of X and V;
+    a case is linearized, a :class:`~pounding.pair.LinearizedPair` reused."""
+    pair = linearized(case_or_pair)
+    outputs = pair.contact_outputs
+    return pair.state_space, outputs, np.array([outputs[0] - outputs[1], outputs[2] - outputs[3]])
 
 
-def pair_lags(case, periods: float = WINDOW, count: int = 40) -> Lags:
+def pair_lags(case_or_pair, periods: float = WINDOW, count: int = 40) -> Lags:
     """The normalized autocovariance at ``count`` lags up to ``periods`` mean periods."""
-    model, _, rows = pair_rows(case)
+    model, _, rows = pair_rows(case_or_pair)
     covariance = model.covariance()
     sigma = np.sqrt(np.diag(rows @ covariance @ rows.T))
     omega = sigma[1] / sigma[0]
@@ -107,11 +109,11 @@ def approaches_in_window(lags: Lags, covariance_lagged, u, speeds, rho, crossing
     cov = np.eye(2)[None] - np.einsum("sij,skj->sik", covariance_lagged, covariance_lagged)
     k11 = np.maximum(cov[:, 0, 0], 1e-12)[:, None]
     k21, k22 = cov[:, 1, 0][:, None], cov[:, 1, 1][:, None]
-    density = _phi((u - mean[:, 0]) / np.sqrt(k11)) / np.sqrt(k11)
+    density = phi((u - mean[:, 0]) / np.sqrt(k11)) / np.sqrt(k11)
     mu = mean[:, 1] + k21 / k11 * (u - mean[:, 0])
     sd = np.sqrt(np.maximum(k22 - k21**2 / k11, 1e-12))
-    up = mu * _q((rho - mu) / sd) + sd * _phi((rho - mu) / sd)
-    down = -mu * _q((rho + mu) / sd) + sd * _phi((rho + mu) / sd)
+    up = mu * normal_tail((rho - mu) / sd) + sd * phi((rho - mu) / sd)
+    down = -mu * normal_tail((rho + mu) / sd) + sd * phi((rho + mu) / sd)
     rate = {"up": up, "down": down, "both": up + down}[crossings]
     return np.trapezoid(lags.omega * density * rate, lags.lags, axis=0)
 
@@ -156,7 +158,7 @@ def one_sided_intensity(crossings, gaps, velocities) -> np.ndarray:
     out = np.zeros((gaps.size, velocities.size))
     for sigma_x, sigma_v, weight in zip(crossings.sigma_x, crossings.sigma_v, crossings.weights):
         u, rho = gaps[:, None] / sigma_x, velocities[None, :] / sigma_v
-        below = 1.0 - _q(u)
+        below = 1.0 - normal_tail(u)
         r = np.hypot(u, rho)
         clumps = vanmarcke_clumps(r, ONE_SIDED * crossings.bandwidth**1.2 * below)
         out += weight * sigma_v / (2.0 * math.pi * sigma_x) * np.exp(-0.5 * (u * u + rho * rho)) / below * clumps
@@ -167,7 +169,7 @@ def expected_power(intensity, speeds, power=1.2):
     return float(np.trapezoid(-np.expm1(-intensity), speeds**power))
 
 
-def free_speeds(case, gaps, records) -> np.ndarray:
+def free_speeds(case, gaps, records: int) -> np.ndarray:
     """Each record's largest up-crossing speed of each gap by the free relative motion."""
     out = np.zeros((len(gaps), records))
     for i, record in enumerate(ground_accelerations(case.excitation, SEED, np.arange(records))):
@@ -179,17 +181,20 @@ def free_speeds(case, gaps, records) -> np.ndarray:
     return out
 
 
-def free_motion_table() -> None:
+def free_motion_table(pairs: int | None = None, records: int = FREE_RECORDS, levels: int | None = None) -> None:
+    """The first ``pairs`` of :data:`PAIRS` at the first ``levels`` of :data:`LEVELS` (all for None),
+    ``records`` free records each."""
     print("| pair | q | gap / sigma_X | P(crossing), simulated | Vanmarcke | Vanmarcke, one side | no clumps | conditional |")
     print("|---|---|---|---|---|---|---|---|")
-    for periods in PAIRS:
-        case = _vary(load_case("section5-T2-0.4"), elastic=True, periods=periods)
-        result = estimator.estimate(case, impact_damping=False)
+    for periods in first(PAIRS, pairs):
+        pair = LinearizedPair.of(varied_case(load_case("section5-T2-0.4"), elastic=True, periods=periods))
+        case = pair.case
+        result = free_estimate(pair)
         crossings = result.crossings
         sigma = crossings.sigma_x[-1]
-        gaps = [level * sigma for level in LEVELS]
-        simulated = free_speeds(case, gaps, FREE_RECORDS)
-        lags = pair_lags(case)
+        gaps = [level * sigma for level in first(LEVELS, levels)]
+        simulated = free_speeds(case, gaps, records)
+        lags = pair_lags(pair)
         velocities = np.linspace(0.0, 6.0 * crossings.sigma_v.max(), 80)
         for gap, speeds in zip(gaps, simulated):
             target = np.mean(speeds**1.2)
@@ -205,114 +210,100 @@ COUNT_NAMES = ("Vanmarcke, time cut (the estimator)", "Vanmarcke one side, time 
                "conditional, mirror returns", "time cut, window of down-crossings", "time cut, window both ways")
 
 
-def grid_table(cases=None, by_regime: bool = False) -> None:
-    """Each count's estimate against Monte Carlo on ``cases`` (the grid by default), and, with
-    ``by_regime``, how many within 10 % in each regime the estimate states."""
+def grid_table(cases=None, by_regime: bool = False, records: int = GRID_RECORDS) -> None:
+    """Each count's estimate against Monte Carlo (``records`` records) on ``cases`` (the grid by
+    default), and, with ``by_regime``, how many within 10 % in each regime the estimate states.
+    Without the impacts' damping the largest approach is counted on the free motion's count, so
+    a variant of that count stands in for both (:func:`validation.free_count.free_estimate`)."""
     counts = [("time cut", "up"), ("mirror", "both"), ("time cut", "down"), ("time cut", "both")]
     print("| case | gap / sigma_X | q | Vanmarcke, time cut (the estimator) | Vanmarcke one side, time cut | conditional, time cut "
           "| conditional, mirror returns | time cut, window of down-crossings | time cut, window both ways |")
     print("|---|---|---|---|---|---|---|---|---|")
-    original = estimator._Crossings.intensity
-    original_impacting = estimator._Crossings.impacting_intensity
-
-    def patched(clumped):
-        def intensity(self, gaps, velocities, clumps=True):
-            if not clumps:  # the required gap keeps every crossing counted
-                return original(self, gaps, velocities, clumps=False)
-            return clumped(self, gaps, velocities)
-
-        return intensity
-
     errors, regimes = [], []
-    try:
-        # Without the impacts' damping the largest approach is counted on the free motion's
-        # count, so a variant of that count stands in for both.
-        estimator._Crossings.impacting_intensity = lambda self, gaps, velocities, motion: self.intensity(gaps, velocities)
-        for case in accuracy_cases() if cases is None else cases:
-            mean = simulate(case, records=GRID_RECORDS, seed=SEED).force_max_mean
-            if mean == 0.0:  # no record pounded: no relative error
-                continue
-            result = estimator.estimate(case, impact_damping=False)
-            regimes.append(result.accuracy_regime)
-            lags = pair_lags(case)
-            variants = [one_sided_intensity] + [
-                lambda self, gaps, velocities, count=count, window=window: conditional_intensity(self, lags, gaps, velocities, count, window)
-                for count, window in counts
-            ]
-            row = [result.force_expected / mean - 1]
-            for variant in variants:
-                estimator._Crossings.intensity = patched(variant)
-                row.append(estimator.estimate(case, impact_damping=False).force_expected / mean - 1)
-                estimator._Crossings.intensity = original
-            errors.append(row)
-            print(f"| {case.name} | {case.contact.gap / result.sigma_relative_displacement:.2f} | {result.crossings.bandwidth:.2f} | "
-                  + " | ".join(f"{e:+.1%}" for e in row) + " |", flush=True)
-    finally:
-        estimator._Crossings.intensity = original
-        estimator._Crossings.impacting_intensity = original_impacting
+    for case in accuracy_cases() if cases is None else cases:
+        mean = simulate(case, records=records, seed=SEED).force_max_mean
+        if mean == 0.0:  # no record pounded: no relative error
+            continue
+        pair = LinearizedPair.of(case)
+        result = free_estimate(pair)
+        regimes.append(result.accuracy_regime)
+        lags = pair_lags(pair)
+        variants = [one_sided_intensity] + [
+            lambda crossings, gaps, velocities, count=count, window=window: conditional_intensity(crossings, lags, gaps, velocities, count, window)
+            for count, window in counts
+        ]
+        row = [result.force_expected / mean - 1]
+        for variant in variants:
+            # The free motion's count (the damped motion's ratios are 1): ``motion`` is not needed.
+            counted = free_estimate(pair, count=lambda crossings, gaps, velocities, motion, variant=variant: variant(crossings, gaps, velocities))
+            row.append(counted.force_expected / mean - 1)
+        errors.append(row)
+        print(f"| {case.name} | {case.contact.gap / result.sigma_relative_displacement:.2f} | {result.crossings.bandwidth:.2f} | "
+              + " | ".join(f"{e:+.1%}" for e in row) + " |", flush=True)
     errors = np.abs(np.array(errors))
     print()
+    if not errors.size:
+        print("no case pounded in any record")
+        return
     print("within 10 %: " + ", ".join(str(int(n)) for n in (errors <= 0.10).sum(axis=0)) + f" of {len(errors)}; median: "
           + ", ".join(f"{m:.1%}" for m in np.median(errors, axis=0)))
     if by_regime:
         regimes = np.array(regimes)
         print("\n| regime | cases | " + " | ".join(f"within 10 %: {name}" for name in COUNT_NAMES) + " |")
         print("|---|---|" + "---|" * len(COUNT_NAMES))
-        for regime in estimator.REGIMES:
+        for regime in REGIMES:
             chosen = errors[regimes == regime]
             if chosen.size:
                 print(f"| {regime} | {len(chosen)} | " + " | ".join(
                     f"{int(n)} ({m:.1%})" for n, m in zip((chosen <= 0.10).sum(axis=0), np.median(chosen, axis=0))) + " |")
 
 
-def free_grid_table() -> None:
-    """The grid's free motion: each count against the simulated free relative motion (no contact)."""
+def free_grid_table(cases: int | None = None, records: int = GRID_RECORDS) -> None:
+    """The grid's free motion (its first ``cases``, all for None): each count against the simulated
+    free relative motion (no contact, ``records`` records)."""
     print("| case | gap / sigma_X | q | Vanmarcke / free motion | conditional / free motion |")
     print("|---|---|---|---|---|")
-    for case in accuracy_cases():
-        result = estimator.estimate(case, impact_damping=False)
+    for case in first(accuracy_cases(), cases):
+        pair = LinearizedPair.of(case)
+        result = free_estimate(pair)
         power = 1.0 if case.contact.model == "linear" else 1.2  # the peak force grows as v^power
         gap = case.contact.gap
-        target = np.mean(free_speeds(case, [gap], GRID_RECORDS)[0] ** power)
+        target = np.mean(free_speeds(case, [gap], records)[0] ** power)
         velocities = np.linspace(0.0, 6.0 * result.crossings.sigma_v.max(), 80)
-        conditional = conditional_intensity(result.crossings, pair_lags(case), gap, velocities, "free")[0]
+        conditional = conditional_intensity(result.crossings, pair_lags(pair), gap, velocities, "free")[0]
         cells = [rice_expected_power(result, power) / target - 1, expected_power(conditional, velocities, power) / target - 1]
         print(f"| {case.name} | {gap / result.sigma_relative_displacement:.2f} | {result.crossings.bandwidth:.2f} | "
               + " | ".join(f"{c:+.1%}" for c in cells) + " |", flush=True)
 
 
-def damped_conditional_table(seeds) -> None:
+def damped_conditional_table(seeds, cases: int | None = None, records: int = GRID_RECORDS) -> None:
     """The estimator, and the estimator with the conditional count in place of Vanmarcke's factor
     for the largest approach (its impacts' damping kept: the damped sigmas scale the count; the
-    window's law is the free pair's), against Monte Carlo on the grid and ``seeds``' draws, by
-    the regime the estimate states and by kind of building (elastic: Gaussian motion)."""
-    original = estimator._Crossings.impacting_intensity
+    window's law is the free pair's), against Monte Carlo (``records`` records) on the grid and
+    ``seeds``' draws (the first ``cases`` of each, all for None), by the regime the estimate states
+    and by kind of building (elastic: Gaussian motion)."""
 
-    def conditional(case):
-        lags = pair_lags(case)
+    def conditional(pair):
+        lags = pair_lags(pair)
 
-        def intensity(self, gaps, velocities, motion):
+        def count(crossings, gaps, velocities, motion):
             gaps = np.atleast_1d(gaps).astype(float)
             out = np.zeros((gaps.size, np.size(velocities)))
             for i, gap in enumerate(gaps):
-                damped = dataclasses.replace(self, sigma_x=self.sigma_x * motion.ratio_displacement[i],
-                                             sigma_v=self.sigma_v * motion.ratio_velocity[i])
+                damped = dataclasses.replace(crossings, sigma_x=crossings.sigma_x * motion.ratio_displacement[i],
+                                             sigma_v=crossings.sigma_v * motion.ratio_velocity[i])
                 out[i] = conditional_intensity(damped, lags, gap, velocities, "time cut")[0]
             return out
 
-        return intensity
+        return count
 
-    def variant(case):
-        estimator._Crossings.impacting_intensity = conditional(case)
-        try:
-            return estimator.estimate(case)
-        finally:
-            estimator._Crossings.impacting_intensity = original
+    def variant(pair):
+        return free_estimate(pair, count=conditional(pair), damped=True)
 
-    sources = {"grid": accuracy_cases(), **{f"draw {seed}": random_cases(seed) for seed in seeds}}
+    sources = {"grid": first(accuracy_cases(), cases), **{f"draw {seed}": first(random_cases(seed), cases) for seed in seeds}}
     rows = []
-    for source, cases in sources.items():
-        for regime, kind, errors in measured_cases(cases, variant):
+    for source, chosen_cases in sources.items():
+        for regime, kind, errors in measured_cases(chosen_cases, variant, records):
             rows.append((source, regime, kind, *errors))
     print("| regime | source | Vanmarcke (the estimator) | conditional count |")
     print("|---|---|---|---|")
@@ -327,14 +318,41 @@ def damped_conditional_table(seeds) -> None:
                 print(f"| {group[0]} | {source} | " + " | ".join(cells) + " |", flush=True)
 
 
-if __name__ == "__main__":
-    if "--damped" in sys.argv[1:]:
-        damped_conditional_table([int(a) for a in sys.argv[sys.argv.index("--damped") + 1:]])
-    elif "--draw" in sys.argv[1:]:
-        grid_table(random_cases(int(sys.argv[sys.argv.index("--draw") + 1])), by_regime=True)
-    elif "--grid" in sys.argv[1:]:
-        grid_table()
-    elif "--free-grid" in sys.argv[1:]:
-        free_grid_table()
+TABLES = ("free", "grid", "free-grid", "draw", "damped")
+
+
+def main(table: str = "free", seeds=(), cases: int | None = None, records: int = GRID_RECORDS,
+         free_records: int = FREE_RECORDS, levels: int | None = None) -> None:
+    """Print ``table`` (one of :data:`TABLES`): ``free``, the free motion of the first ``cases``
+    of :data:`PAIRS` at the first ``levels`` of :data:`LEVELS` (``free_records`` records);
+    ``grid``, ``free-grid``: the first ``cases`` of
+    the grid; ``draw``: of the draw ``seeds[0]``, by regime; ``damped``: the grid and the draws of
+    ``seeds``; ``records`` records each (all cases for None)."""
+    if table == "free":
+        free_motion_table(cases, free_records, levels)
+    elif table == "grid":
+        grid_table(first(accuracy_cases(), cases), records=records)
+    elif table == "free-grid":
+        free_grid_table(cases, records)
+    elif table == "draw":
+        grid_table(first(random_cases(seeds[0]), cases), by_regime=True, records=records)
+    elif table == "damped":
+        damped_conditional_table(seeds, cases, records)
     else:
-        free_motion_table()
+        raise ValueError(f"table must be one of {', '.join(TABLES)}, got {table!r}")
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument("--grid", dest="table", action="store_const", const="grid", help="the estimator's grid")
+    group.add_argument("--free-grid", dest="table", action="store_const", const="free-grid", help="the grid's free motion")
+    group.add_argument("--draw", type=int, metavar="SEED", help="a random draw, by regime")
+    group.add_argument("--damped", type=int, nargs="+", metavar="SEED", help="the conditional count with the impacts' damping")
+    arguments = parser.parse_args()
+    if arguments.draw is not None:
+        main("draw", [arguments.draw])
+    elif arguments.damped:
+        main("damped", arguments.damped)
+    else:
+        main(arguments.table or "free")

@@ -35,30 +35,35 @@ time below the gap, nu / Phi(d / sigma_X), with the clumps) with the count it
 replaced, Zhuravlev's mirror returns (impacts at envelope a recurring at
 omega / (2 (pi - arccos(d / a))), with the clumps).
 
-    python3 docs/error_decomposition.py                 # about 30 s on 2 cores
-    python3 docs/error_decomposition.py --free-motion   # about 1 min
-    python3 docs/error_decomposition.py --mirror        # about 30 s
-    python3 docs/error_decomposition.py --rates         # about 10 min
+The estimate here is the free count (the largest approach counted on the
+free motion, :func:`validation.free_count.free_estimate`), as these tables
+were measured before the impacts' damping.
+
+    python3 -m validation.error_decomposition                 # about 30 s on 2 cores
+    python3 -m validation.error_decomposition --free-motion   # about 1 min
+    python3 -m validation.error_decomposition --mirror        # about 30 s
+    python3 -m validation.error_decomposition --rates         # about 10 min
 """
 
 from __future__ import annotations
 
+import argparse
 import dataclasses
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from pounding import integrate, simulate
+from pounding.contact import impact_peak_force
+from pounding.excitation import ground_accelerations
+from pounding.gap_aware import expected_maximum
+from pounding.validation import accuracy_cases
 
-from pounding import integrate, simulate  # noqa: E402
-from pounding.contact import impact_peak_force  # noqa: E402
-from pounding.estimator import estimate  # noqa: E402
-from pounding.excitation import ground_accelerations  # noqa: E402
-from pounding.validation import accuracy_cases  # noqa: E402
+from .free_count import free_estimate
+from .sizes import first
 
 RECORDS, SEED = 300, 11
+RATE_RECORDS = 200
 
 
 def contact_motion(case, record, contact: bool = True) -> tuple[np.ndarray, np.ndarray]:
@@ -83,11 +88,11 @@ def largest_expected_power(speeds_by_record, power: float) -> float:
     return float(np.mean([max(speeds.max(initial=0.0), 0.0) ** power for speeds in speeds_by_record]))
 
 
-def free_motion_speeds(case) -> np.ndarray:
+def free_motion_speeds(case, records: int = RECORDS) -> np.ndarray:
     """Each record's largest upward crossing speed of the gap by X = x1 - x2
     without contact (0 if X never reaches the gap) [m/s]."""
-    speeds = np.zeros(RECORDS)
-    for i, record in enumerate(ground_accelerations(case.excitation, SEED, np.arange(RECORDS))):
+    speeds = np.zeros(records)
+    for i, record in enumerate(ground_accelerations(case.excitation, SEED, np.arange(records))):
         crossings = upcrossing_speeds(*contact_motion(case, record, contact=False), case.contact.gap)
         if crossings.size:
             speeds[i] = np.max(crossings)
@@ -147,36 +152,32 @@ def mirror_expected_power(result, power: float) -> float:
     return _expected_power(result, power, rate)
 
 
-def free_motion_table() -> None:
-    from pounding.estimator import _expected_maximum
-
+def free_motion_table(cases: int | None = None, records: int = RECORDS) -> None:
     print("| case | gap / sigma_X | impacts: simulated / free motion | time cut: estimator / Rice | Gaussian: Rice / free motion "
           "| estimate / simulated |")
     print("|---|---|---|---|---|---|")
-    for case in accuracy_cases():
-        result = estimate(case, impact_damping=False)
+    for case in first(accuracy_cases(), cases):
+        result = free_estimate(case)
         power = 1.0 if case.contact.model == "linear" else 1.2  # the peak force grows as v^power
-        simulated = simulate(case, records=RECORDS, seed=SEED)
+        simulated = simulate(case, records=records, seed=SEED)
         with_impacts = np.mean(simulated.impact_velocity_max**power)
-        free = np.mean(free_motion_speeds(case) ** power)
+        free = np.mean(free_motion_speeds(case, records) ** power)
         rice = rice_expected_power(result, power)
         gap = np.array([case.contact.gap])
-        cut = _expected_maximum(result.crossings, gap, lambda v: v**power, power, result.crossings.damped(gap))[0]
+        cut = expected_maximum(result.crossings, gap, lambda v: v**power, power, result.crossings.damped(gap))[0]
         print(f"| {case.name} | {case.contact.gap / result.sigma_relative_displacement:.2f} | {with_impacts / free - 1:+.1%} "
               f"| {cut / rice - 1:+.1%} | {rice / free - 1:+.1%} | {result.force_expected / simulated.force_max_mean - 1:+.1%} |")
 
 
-def mirror_table() -> None:
-    from pounding.estimator import _expected_maximum
-
+def mirror_table(cases: int | None = None, records: int = RECORDS) -> None:
     print("| case | gap / sigma_X | largest speed, time cut (the estimator) | largest speed, mirror returns |")
     print("|---|---|---|---|")
-    for case in accuracy_cases():
-        result = estimate(case, impact_damping=False)
+    for case in first(accuracy_cases(), cases):
+        result = free_estimate(case)
         power = 1.0 if case.contact.model == "linear" else 1.2
-        simulated = np.mean(simulate(case, records=RECORDS, seed=SEED).impact_velocity_max ** power)
+        simulated = np.mean(simulate(case, records=records, seed=SEED).impact_velocity_max ** power)
         gap = np.array([case.contact.gap])
-        cut = _expected_maximum(result.crossings, gap, lambda v: v**power, power, result.crossings.damped(gap))[0]
+        cut = expected_maximum(result.crossings, gap, lambda v: v**power, power, result.crossings.damped(gap))[0]
         mirror = mirror_expected_power(result, power)
         print(f"| {case.name} | {case.contact.gap / result.sigma_relative_displacement:.2f} | {cut / simulated - 1:+.1%} "
               f"| {mirror / simulated - 1:+.1%} |")
@@ -199,15 +200,13 @@ def approach_speeds(case, records: int) -> tuple[list, list]:
     return impacting, free_motion
 
 
-def rates_table(records: int = 200) -> None:
+def rates_table(cases: int | None = None, records: int = RATE_RECORDS) -> None:
     """Approaches faster than v per record, impacting over free motion, against the time cut's 1 / Phi(u)."""
     print("| case | q | gap / sigma_X | time cut 1 / Phi(u) | " + " | ".join(f"v > {level:g} sigma_V" for level in SPEED_LEVELS)
           + " | E[V_max^p], impacting / free |")
     print("|---" * (5 + SPEED_LEVELS.size) + "|")
-    for case in accuracy_cases():
-        if case.name not in RATE_CASES:
-            continue
-        result = estimate(case, impact_damping=False)
+    for case in first((case for case in accuracy_cases() if case.name in RATE_CASES), cases):
+        result = free_estimate(case)
         power = 1.0 if case.contact.model == "linear" else 1.2
         impacting, free_motion = approach_speeds(case, records)
         levels = SPEED_LEVELS * result.sigma_relative_velocity
@@ -219,21 +218,26 @@ def rates_table(records: int = 200) -> None:
               + " | ".join(f"{r:.2f}" for r in ratios) + f" | {largest[0] / largest[1]:.3f} |", flush=True)
 
 
-def main() -> None:
-    if "--free-motion" in sys.argv[1:]:
-        free_motion_table()
+TABLES = ("force", "free-motion", "mirror", "rates")
+
+
+def main(table: str = "force", cases: int | None = None, records: int = RECORDS, rate_records: int = RATE_RECORDS) -> None:
+    """Print ``table`` (one of :data:`TABLES`) over the first ``cases`` of the grid
+    (all for None), ``records`` records each (``rate_records`` for the rates)."""
+    if table == "free-motion":
+        free_motion_table(cases, records)
         return
-    if "--rates" in sys.argv[1:]:
-        rates_table()
+    if table == "rates":
+        rates_table(cases, rate_records)
         return
-    if "--mirror" in sys.argv[1:]:
-        mirror_table()
+    if table == "mirror":
+        mirror_table(cases, records)
         return
     print("| case | gap / sigma_X | bandwidth q | impact force, free masses | impact force | largest speed | estimate |")
     print("|---|---|---|---|---|---|---|")
-    for case in accuracy_cases():
-        result = estimate(case, impact_damping=False)
-        simulated = simulate(case, records=RECORDS, seed=SEED)
+    for case in first(accuracy_cases(), cases):
+        result = free_estimate(case)
+        simulated = simulate(case, records=records, seed=SEED)
         speeds = simulated.impact_velocity_max
         braked = impact_peak_force(case.contact, speeds, case.reduced_mass, result.opposing_force).mean()
         free = impact_peak_force(case.contact, speeds, case.reduced_mass).mean()
@@ -247,4 +251,8 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    main()
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    group = parser.add_mutually_exclusive_group()
+    for name in TABLES[1:]:
+        group.add_argument(f"--{name}", dest="table", action="store_const", const=name)
+    main(parser.parse_args().table or "force")

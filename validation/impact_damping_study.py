@@ -1,51 +1,56 @@
 """The impacts' damping of the relative motion, measured.
 
-Reproduces the tables of "The impacts' damping, measured" in docs/estimator.md:
+Reproduces the tables of "The impacts' damping, measured" in validation/HISTORY.md:
 
 - by regime, the estimate with the impacts' damping (the estimator) and
-  without it (``estimate(case, impact_damping=False)``, the free count it
-  replaced) against this project's Monte Carlo (300 records, seed 11), on the
+  without it (the free count it replaced, :func:`validation.free_count.free_estimate`)
+  against this project's Monte Carlo (300 records, seed 11), on the
   grid and on random draws of cases (``validation.random_cases``);
 - for one elastic pair of close periods, Monte Carlo and both counts at five
   gaps: the force grows with a small gap, as fewer impacts damp the motion less.
 
-    python3 docs/impact_damping.py                    # the grid and draws 2026-2028, about 7 min on 2 cores
-    python3 docs/impact_damping.py --seeds 2029       # other draws (the grid too)
-    python3 docs/impact_damping.py --gap-curve        # the pair at five gaps, 400 records each, about 1 min
+    python3 -m validation.impact_damping_study                    # the grid and draws 2026-2028, about 7 min on 2 cores
+    python3 -m validation.impact_damping_study --seeds 2029       # other draws (the grid too)
+    python3 -m validation.impact_damping_study --gap-curve        # the pair at five gaps, 400 records each, about 1 min
 """
 
 from __future__ import annotations
 
-import sys
-from pathlib import Path
+import argparse
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from pounding import load_case, simulate
+from pounding.estimator import estimate
+from pounding.pair import LinearizedPair
+from pounding.validation import accuracy_cases, random_cases, varied_case
 
-from pounding import simulate  # noqa: E402
-from pounding.estimator import _yielding, estimate  # noqa: E402
-from pounding.linearization import linearize_pair  # noqa: E402
-from pounding.validation import _vary, accuracy_cases, random_cases  # noqa: E402
+from .free_count import free_estimate
+from .sizes import first
 
 ORDER = ("frequent", "moderate gap", "narrow band", "large residual", "rare, yielding", "rare, elastic")
+RECORDS, SEED = 300, 11
+SEEDS = (2026, 2027, 2028)
+GAP_CURVE_RECORDS = 400
 
 
-def measured(cases) -> list[tuple[str, float, float]]:
+def measured(cases, records: int = RECORDS) -> list[tuple[str, float, float]]:
     """(regime, error with the damping, error without) per case where some record pounded."""
-    return [(regime, *errors) for regime, _, errors in measured_cases(cases, lambda case: estimate(case, impact_damping=False))]
+    return [(regime, *errors) for regime, _, errors in measured_cases(cases, free_estimate, records)]
 
 
-def measured_cases(cases, variant) -> list[tuple[str, str, tuple[float, float]]]:
-    """(regime, kind, (error of the estimator, error of ``variant(case)``)) per case where some of
-    300 records (seed 11) pounded; kind "elastic" or "yielding", the "rare" regime split by it."""
+def measured_cases(cases, variant, records: int = RECORDS) -> list[tuple[str, str, tuple[float, float]]]:
+    """(regime, kind, (error of the estimator, error of ``variant(pair)``, ``pair`` the case's
+    :class:`~pounding.pair.LinearizedPair`)) per case where some of ``records`` records (seed 11)
+    pounded; kind "elastic" or "yielding", the "rare" regime split by it."""
     out = []
     for case in cases:
-        mean = simulate(case, records=300, seed=11).force_max_mean
+        mean = simulate(case, records=records, seed=SEED).force_max_mean
         if mean <= 0.0:
             continue
-        result, other = estimate(case), variant(case)
-        kind = "yielding" if _yielding(linearize_pair(case)) else "elastic"
+        pair = LinearizedPair.of(case)
+        result, other = estimate(pair), variant(pair)
+        kind = "yielding" if pair.yielding else "elastic"
         regime = result.accuracy_regime if result.accuracy_regime != "rare" else f"rare, {kind}"
         out.append((regime, kind, (result.force_expected / mean - 1, other.force_expected / mean - 1)))
     return out
@@ -69,19 +74,17 @@ def regime_table(sources: dict) -> None:
                 print(f"| {regime} | {source} | {_cell([r[1] for r in selected])} | {_cell([r[2] for r in selected])} |")
 
 
-def gap_curve_table(records: int = 400) -> None:
-    """The elastic pair 0.61 / 0.48 s, G0 x 5.86, e = 0.42 at five gaps."""
-    from pounding import load_case
-
-    base = _vary(load_case("section5-T2-0.4"), elastic=True, periods=(0.61, 0.48), g0=5.86, restitution=0.42)
+def gap_curve_table(records: int = GAP_CURVE_RECORDS, gaps: int | None = None) -> None:
+    """The elastic pair 0.61 / 0.48 s, G0 x 5.86, e = 0.42 at five gaps (the first ``gaps`` of them)."""
+    base = varied_case(load_case("section5-T2-0.4"), elastic=True, periods=(0.61, 0.48), g0=5.86, restitution=0.42)
     sigma = estimate(base).sigma_relative_displacement
     print(f"sigma_X = {100 * sigma:.2f} cm\n")
     print("| gap (cm) | gap / sigma_X | Monte Carlo E[F_max] (MN) | with the impacts' damping | free count | sigma_V before an approach / free | memory |")
     print("|---|---|---|---|---|---|---|")
-    for gap in (0.0, 0.0083, 0.0166, 0.0333, 0.05):
-        case = _vary(base, gap=gap)
-        study = simulate(case, records=records, seed=5)
-        damped, free = estimate(case), estimate(case, impact_damping=False)
+    for gap in first((0.0, 0.0083, 0.0166, 0.0333, 0.05), gaps):
+        pair = LinearizedPair.of(varied_case(base, gap=gap))
+        study = simulate(pair.case, records=records, seed=5)
+        damped, free = estimate(pair), free_estimate(pair)
         mean = study.force_max_mean
         print(f"| {100 * gap:.2f} | {gap / sigma:.2f} | {mean / 1e6:.3f} ± {study.force_max_std_error / 1e6:.3f} | "
               f"{damped.force_expected / 1e6:.3f} ({damped.force_expected / mean - 1:+.1%}) | "
@@ -89,10 +92,20 @@ def gap_curve_table(records: int = 400) -> None:
               f"{damped.impacting_velocity_ratio:.2f} | {damped.impact_memory:.2f} |", flush=True)
 
 
-def main(seeds) -> None:
-    sources = {"grid": measured(accuracy_cases())}
+TABLES = ("regimes", "gap-curve")
+
+
+def main(table: str = "regimes", seeds=SEEDS, cases: int | None = None, records: int = RECORDS,
+         gap_curve_records: int = GAP_CURVE_RECORDS, gaps: int | None = None) -> None:
+    """Print ``table`` (one of :data:`TABLES`): the regime tables over the first ``cases``
+    (all for None) of the grid and of each draw of ``seeds``, ``records`` records each; or
+    the gap curve at the first ``gaps`` gaps, ``gap_curve_records`` records each."""
+    if table == "gap-curve":
+        gap_curve_table(gap_curve_records, gaps)
+        return
+    sources = {"grid": measured(first(accuracy_cases(), cases), records)}
     for seed in seeds:
-        sources[f"draw {seed}"] = measured(random_cases(seed))
+        sources[f"draw {seed}"] = measured(first(random_cases(seed), cases), records)
     regime_table(sources)
     everything = [row for rows in sources.values() for row in rows]
     print()
@@ -100,9 +113,9 @@ def main(seeds) -> None:
 
 
 if __name__ == "__main__":
-    arguments = sys.argv[1:]
-    if "--gap-curve" in arguments:
-        gap_curve_table()
-    else:
-        seeds = [int(a) for a in arguments[arguments.index("--seeds") + 1:]] if "--seeds" in arguments else [2026, 2027, 2028]
-        main(seeds)
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--seeds", type=int, nargs="+", default=list(SEEDS), help="the random draws (besides the grid)")
+    parser.add_argument("--gap-curve", dest="table", action="store_const", const="gap-curve", default="regimes",
+                        help="the elastic pair at five gaps")
+    arguments = parser.parse_args()
+    main(arguments.table, arguments.seeds)

@@ -1,6 +1,6 @@
 """The recommended estimator on cases it was not developed on.
 
-Reproduces the table of "Out of sample" in docs/estimator.md. The grid of
+Reproduces the table of "Out of sample" in validation/HISTORY.md. The grid of
 ``pounding validate --grid`` was chosen by hand, and every model in the
 estimator was judged on it; this draws cases at random from the ranges the
 estimator claims (periods 0.2-2 s, gaps 0-5 cm, restitution 0.4-0.9, G0 x 0.25
@@ -10,39 +10,49 @@ estimate against this project's Monte Carlo (300 records, seed 11), sorted by
 the regime the estimate states (``Estimate.accuracy_regime``): the ranges that
 ``pounding estimate`` prints as its measured accuracy come from this table.
 
-    python3 docs/out_of_sample.py                  # the grid and three draws of 100 cases, about 7 min on 2 cores
-    python3 docs/out_of_sample.py --seeds 2029     # other draws
-    python3 docs/out_of_sample.py --required-gap   # the gap for 95 % no pounding against Monte Carlo, about 4 min
+``validation.accuracy_data`` writes what these tables measure to
+``pounding/data/accuracy.json``, where the estimate reads it.
+
+    python3 -m validation.out_of_sample                  # the grid and three draws of 100 cases, about 7 min on 2 cores
+    python3 -m validation.out_of_sample --seeds 2029     # other draws
+    python3 -m validation.out_of_sample --required-gap   # the gap for 95 % no pounding against Monte Carlo, about 4 min
 """
 
 from __future__ import annotations
 
+import argparse
 import math
-import sys
-from pathlib import Path
+from dataclasses import dataclass
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from pounding.estimator import estimate
+from pounding.pair import LinearizedPair
+from pounding.regimes import MOVING_TOGETHER, REGIMES
+from pounding.simulation import design_gap
+from pounding.validation import RANDOM_FAMILIES, accuracy, accuracy_cases, random_cases
 
-from pounding.estimator import MOVING_TOGETHER, REGIMES, _yielding, estimate  # noqa: E402
-from pounding.linearization import linearize_pair  # noqa: E402
-from pounding.simulation import design_gap  # noqa: E402
-from pounding.validation import RANDOM_FAMILIES, accuracy, accuracy_cases, random_cases  # noqa: E402
+from .sizes import first
+
+SEEDS = (2026, 2027, 2028)
+RECORDS, SEED = 300, 11  # the force's Monte Carlo
+GAP_RECORDS, GAP_SEED = 400, 9  # the required gap's
+LABELS = (*(r for r in REGIMES if r != "rare"), "rare, yielding", "rare, elastic")
+"""The regimes the estimate states, rare pounding split by whether a storey yields."""
 
 
 def _label(case, row) -> str:
     """The estimator's own regime (``AccuracyRow.accuracy_regime``), rare pounding split by yielding."""
     if row.accuracy_regime != "rare":
         return row.accuracy_regime
-    return "rare, yielding" if _yielding(linearize_pair(case)) else "rare, elastic"
+    return "rare, yielding" if LinearizedPair.of(case).yielding else "rare, elastic"
 
 
-def measured(cases) -> list[tuple[str, object, float]]:
-    """(regime, accuracy row, error) of each case against Monte Carlo (300 records, seed 11); cases where no
-    record pounded have no relative error and are left out."""
+def measured(cases, records: int = RECORDS, seed: int = SEED) -> list[tuple[str, object, float]]:
+    """(regime, accuracy row, error) of each case against Monte Carlo (``records`` records, ``seed``); cases
+    where no record pounded have no relative error and are left out."""
     out = []
-    for case, row in zip(cases, accuracy(cases, records=300, seed=11)):
+    for case, row in zip(cases, accuracy(cases, records=records, seed=seed)):
         if row.monte_carlo > 0.0:
             out.append((_label(case, row), row, row.recommended_error))
     return out
@@ -52,8 +62,9 @@ def case_table(results) -> None:
     print("| case | regime | gap / sigma_X | Monte Carlo E[F_max] (kN) | s.e. | recommended | paper |")
     print("|---|---|---|---|---|---|---|")
     for regime, row, error in results:
+        paper = "-" if row.paper_error is None else f"{row.paper_error:+.1%}"
         print(f"| {row.case} | {regime} | {row.gap_over_sigma:.2f} | {row.monte_carlo / 1e3:.1f} | "
-              f"{row.monte_carlo_std_error / row.monte_carlo:.1%} | {error:+.1%} | {row.paper_error:+.1%} |")
+              f"{row.monte_carlo_std_error / row.monte_carlo:.1%} | {error:+.1%} | {paper} |")
 
 
 def regime_table(sources: dict) -> None:
@@ -61,8 +72,7 @@ def regime_table(sources: dict) -> None:
     names = list(sources)
     print("| regime | " + " | ".join(f"within 10 %: {name}" for name in names) + " | all: within 10 % | all: median | all: range |")
     print("|---|" + "---|" * (len(names) + 3))
-    labels = [*(r for r in REGIMES if r != "rare"), "rare, yielding", "rare, elastic"]
-    for label in labels:
+    for label in LABELS:
         cells, every = [], []
         for name in names:
             errors = np.array([e for regime, _, e in sources[name] if regime == label])
@@ -74,26 +84,51 @@ def regime_table(sources: dict) -> None:
                   f"{np.median(np.abs(every)):.1%} | {every.min():+.0%} to {every.max():+.0%} |")
 
 
-def required_gap_table(seeds, records: int = 400, target: float = 0.95) -> None:
-    """The gap given for ``target`` probability of no pounding against ``records`` simulated records (seed 9):
-    the fraction that pounds at it, and the gap for ``target`` by Monte Carlo, by kind of pair. Both come from
-    the records' free motion (``simulation.design_gap``): a record pounds at a gap exactly when its free peak
-    exceeds it."""
+@dataclass(frozen=True)
+class RequiredGap:
+    """The closed-form gap for the target of one drawn case against Monte Carlo."""
+
+    family: str
+    """Its kind of pair, one of :data:`~pounding.validation.RANDOM_FAMILIES`."""
+    moving_together: bool
+    """Whether the contact floors' linearized x1, x2 correlate at least :data:`~pounding.regimes.MOVING_TOGETHER`."""
+    fraction: float
+    """Of the records, the fraction pounding at the closed-form gap [-]."""
+    ratio: float
+    """The closed-form gap over the Monte Carlo gap for the target [-]."""
+
+
+def required_gaps(seeds, records: int = GAP_RECORDS, target: float = 0.95, cases: int | None = None) -> list[RequiredGap]:
+    """The gap given for ``target`` probability of no pounding on the draws of ``seeds`` (the first ``cases``
+    of each, all for None) against ``records`` simulated records (seed 9). Both come from the records' free
+    motion (``simulation.design_gap``): a record pounds at a gap exactly when its free peak exceeds it."""
+    out = []
+    for seed in seeds:
+        families = [family for family, count in RANDOM_FAMILIES for _ in range(count)]
+        for family, case in first(zip(families, random_cases(seed)), cases):
+            pair = LinearizedPair.of(case)
+            result = estimate(pair, target_probability=target)
+            monte_carlo = design_gap(case, target_probability=target, records=records, seed=GAP_SEED)
+            moving = result.response.correlation_displacement >= MOVING_TOGETHER
+            out.append(RequiredGap(family, bool(moving), monte_carlo.pounding_fraction(result.required_gap),
+                                   result.required_gap / monte_carlo.gap))
+    return out
+
+
+def required_gap_table(seeds, records: int = GAP_RECORDS, target: float = 0.95, cases: int | None = None) -> None:
+    """The fraction of ``records`` records pounding at the gap given for ``target`` and that gap over the
+    Monte Carlo one, by kind of pair (:func:`required_gaps`), then the yielding pairs by whether their
+    floors move together."""
     limit = 1.0 - target + 2.0 * math.sqrt(target * (1.0 - target) / records)  # two standard errors above the target
     fractions: dict[str, list[float]] = {}
     ratios: dict[str, list[float]] = {}
     together: dict[tuple[str, bool], list[float]] = {}  # yielding pairs, by whether their floors move together
-    for seed in seeds:
-        for family, case in zip([f for f, count in RANDOM_FAMILIES for _ in range(count)], random_cases(seed)):
-            result = estimate(case, target_probability=target)
-            closed_form = result.required_gap
-            monte_carlo = design_gap(case, target_probability=target, records=records, seed=9)
-            fractions.setdefault(family, []).append(monte_carlo.pounding_fraction(closed_form))
-            ratios.setdefault(family, []).append(closed_form / monte_carlo.gap)
-            if not family.startswith("elastic"):
-                kind = "one-storey" if family.startswith("SDOF") else family
-                moving = result.response.correlation_displacement >= MOVING_TOGETHER
-                together.setdefault((kind, moving), []).append(monte_carlo.pounding_fraction(closed_form))
+    for row in required_gaps(seeds, records, target, cases):
+        fractions.setdefault(row.family, []).append(row.fraction)
+        ratios.setdefault(row.family, []).append(row.ratio)
+        if not row.family.startswith("elastic"):
+            kind = "one-storey" if row.family.startswith("SDOF") else row.family
+            together.setdefault((kind, row.moving_together), []).append(row.fraction)
     print(f"| pairs | cases | fraction pounding at the gap for {target:.0%}: mean | largest | above {limit:.3f} | "
           "closed-form gap / Monte Carlo gap: median | smallest |")
     print("|---|---|---|---|---|---|---|")
@@ -110,10 +145,16 @@ def required_gap_table(seeds, records: int = 400, target: float = 0.95) -> None:
         print(f"| {kind} | {'yes' if moving else 'no'} | {values.size} | {values.mean():.3f} | {values.max():.3f} | {(values > limit).sum()} |")
 
 
-def main(seeds) -> None:
-    sources = {"grid": measured(accuracy_cases())}
+def main(seeds=SEEDS, cases: int | None = None, records: int = RECORDS, required_gap: bool = False,
+         gap_records: int = GAP_RECORDS) -> None:
+    """The regime table over the grid and the draws of ``seeds`` (the first ``cases`` of each, all for
+    None; ``records`` records), or with ``required_gap`` the required-gap tables (``gap_records`` records)."""
+    if required_gap:
+        required_gap_table(seeds, gap_records, cases=cases)
+        return
+    sources = {"grid": measured(first(accuracy_cases(), cases), records)}
     for seed in seeds:
-        results = measured(random_cases(seed))
+        results = measured(first(random_cases(seed), cases), records)
         print(f"Draw {seed}:\n")
         case_table(results)
         print()
@@ -122,9 +163,8 @@ def main(seeds) -> None:
 
 
 if __name__ == "__main__":
-    arguments = sys.argv[1:]
-    seeds = [int(a) for a in arguments[arguments.index("--seeds") + 1:]] if "--seeds" in arguments else [2026, 2027, 2028]
-    if "--required-gap" in arguments:
-        required_gap_table(seeds)
-    else:
-        main(seeds)
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--seeds", type=int, nargs="+", default=list(SEEDS), help="the random draws (besides the grid)")
+    parser.add_argument("--required-gap", action="store_true", help="the gap for 95 %% no pounding against Monte Carlo")
+    arguments = parser.parse_args()
+    main(arguments.seeds, required_gap=arguments.required_gap)

@@ -1,6 +1,6 @@
 """The separation rules' expected floor peaks against Monte Carlo: the numbers.
 
-Reproduces the table of ``docs/estimator.md`` ("The separation rules"). SRSS,
+Reproduces the table of ``validation/HISTORY.md`` ("The separation rules"). SRSS,
 ABS and DDC combine the expected peak |displacement| u1, u2 of the two contact
 floors; how good a rule can be rests on those two numbers. For each case the
 buildings are set far apart (no pounding), 300 records (seed 5) give each
@@ -16,25 +16,23 @@ Cases: the grid's buildings and excitations (each once, the gap variants
 dropped) and every fourth case of a random draw (seed 2030, a draw not used
 elsewhere).
 
-    python3 docs/separation_rules.py            # about 1 min on 2 cores
+    python3 -m validation.separation_rules            # about 1 min on 2 cores
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from pounding import simulate
+from pounding.estimator import estimate
+from pounding.pair import LinearizedPair
+from pounding.peaks import davenport_peak_factor, envelope_variance, equivalent_stationary
+from pounding.validation import accuracy_cases, random_cases
 
-from pounding import simulate  # noqa: E402
-from pounding.estimator import _yielding, estimate  # noqa: E402
-from pounding.linearization import linearize_pair  # noqa: E402
-from pounding.peaks import davenport_peak_factor, envelope_variance, equivalent_stationary  # noqa: E402
-from pounding.validation import accuracy_cases, random_cases  # noqa: E402
+from .sizes import first
 
 RECORDS, SEED, APART = 300, 5, 5.0  # records, seed, gap [m] no record reaches
 
@@ -54,15 +52,16 @@ def davenport_peaks(case, response) -> np.ndarray:
     return np.array(peaks)
 
 
-def kind(case, linearized) -> str:
-    if not _yielding(linearized):
+def kind(case, pair: LinearizedPair) -> str:
+    if not pair.yielding:
         return "elastic"
     if "frames" in case.name or case.name.startswith(("section6", "s6")):
         return "frames (alpha 0.02)"
     return "yielding"
 
 
-def cases() -> list:
+def apart_cases() -> list:
+    """The grid's buildings and excitations, each once, and every fourth case of the draw 2030, set far apart."""
     seen, chosen = set(), []
     for case in accuracy_cases() + random_cases(2030)[::4]:
         key = (case.buildings, case.excitation, case.contact.levels)
@@ -72,28 +71,29 @@ def cases() -> list:
     return chosen
 
 
-def main() -> None:
+def main(cases: int | None = None, records: int = RECORDS) -> None:
+    """The tables over the first ``cases`` of :func:`apart_cases` (all for None), ``records`` records each."""
     rows = []
     print("| case | kind | floor peaks, Monte Carlo (cm) | Davenport, stationary | from rest, Vanmarcke's clumps |")
     print("|---|---|---|---|---|")
-    for case in cases():
-        linearized = linearize_pair(case)
-        result = simulate(case, records=RECORDS, seed=SEED)
+    for case in first(apart_cases(), cases):
+        pair = LinearizedPair.of(case)
+        result = simulate(case, records=records, seed=SEED)
         if result.impacts.sum():
             continue
         simulated = result.displacement_max.mean(axis=0)
-        estimated = estimate(case, linearized=linearized)
+        estimated = estimate(pair)
         before = davenport_peaks(case, estimated.response) / simulated - 1
         now = np.array(estimated.separation_rules["peak_displacement"]) / simulated - 1
-        rows.append((kind(case, linearized), before, now))
+        rows.append((kind(case, pair), before, now))
         print(f"| {case.name} | {rows[-1][0]} | {100 * simulated[0]:.2f} / {100 * simulated[1]:.2f} | "
               f"{100 * before[0]:+.1f}% / {100 * before[1]:+.1f}% | {100 * now[0]:+.1f}% / {100 * now[1]:+.1f}% |", flush=True)
     print("\n| pairs | floors | Davenport, stationary: median, range | from rest, Vanmarcke's clumps: median, range |")
     print("|---|---|---|---|")
     for name in ("elastic", "yielding", "frames (alpha 0.02)"):
-        before = np.concatenate([b for k, b, _ in rows if k == name])
-        now = np.concatenate([n for k, _, n in rows if k == name])
-        if before.size:
+        chosen = [(b, n) for k, b, n in rows if k == name]
+        if chosen:
+            before, now = (np.concatenate(column) for column in zip(*chosen))
             print(f"| {name} | {before.size} | {100 * np.median(before):+.1f}%, {100 * before.min():+.1f}% to {100 * before.max():+.1f}% | "
                   f"{100 * np.median(now):+.1f}%, {100 * now.min():+.1f}% to {100 * now.max():+.1f}% |")
 

@@ -1,6 +1,6 @@
 """Why the recommended estimator is low for pairs that both yield: the numbers.
 
-Reproduces the diagnosis in ``docs/estimator.md`` ("Where it is low"). For
+Reproduces the diagnosis in ``validation/HISTORY.md`` ("Where it is low"). For
 each case, the buildings are simulated *without contact* (gap 10 m), 200
 records of 100 s (seed 7), and compared after the first 10 s with the
 statistically linearized pair the estimators stand on:
@@ -13,23 +13,19 @@ statistically linearized pair the estimators stand on:
 - the fraction of upcrossings of the gap by X whose velocity exceeds
   r sigma_V, against Rice's Rayleigh law exp(-r^2 / 2).
 
-    python3 docs/yielding_pairs.py            # about 1 min on 2 cores
+    python3 -m validation.yielding_pairs            # about 1 min on 2 cores
 """
 
 from __future__ import annotations
 
-import sys
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from pounding import load_case, simulate_record
+from pounding.pair import LinearizedPair
 
-from pounding import load_case  # noqa: E402
-from pounding.linearization import linearize_pair  # noqa: E402
-from pounding.response import contact_covariance_history  # noqa: E402
-from pounding.simulation import simulate_record  # noqa: E402
+from .sizes import first
 
 CASES = ("section5-T2-0.4", "section5-T2-0.8", "section6-T2-0.4", "section6-T2-0.8")
 RECORDS, DURATION, SKIP, SEED, STEP = 200, 100.0, 10.0, 7, 0.002  # [-], [s], [s], [-], [s]
@@ -41,15 +37,16 @@ def kurtosis(a: np.ndarray) -> float:
     return float(np.mean(a**4) / np.mean(a**2) ** 2)
 
 
-def diagnose(name: str) -> None:
+def diagnose(name: str, records: int = RECORDS, duration: float = DURATION) -> None:
+    """The table of the case ``name``: ``records`` records of ``duration`` [s] without contact."""
     case = load_case(name)
     gap = case.contact.gap
-    free = replace(case, contact=replace(case.contact, gap=10.0), excitation=replace(case.excitation, duration=DURATION))
+    free = replace(case, contact=replace(case.contact, gap=10.0), excitation=replace(case.excitation, duration=duration))
     first = free.contact.levels[0] - 1
     second = free.buildings[0].n_storeys + free.contact.levels[1] - 1
-    times = np.arange(SKIP, DURATION, STEP)
+    times = np.arange(SKIP, duration, STEP)
     x1, x2, v1, v2, crossing_velocities = [], [], [], [], []
-    for index in range(RECORDS):
+    for index in range(records):
         history = simulate_record(free, SEED, index)
         columns = [np.interp(times, history.time, values[:, floor]) for values in (history.displacement, history.velocity) for floor in (first, second)]
         d1, d2, u1, u2 = columns
@@ -62,7 +59,7 @@ def diagnose(name: str) -> None:
     X, V = x1 - x2, v1 - v2
     crossing_velocities = np.asarray(crossing_velocities)
 
-    covariance = contact_covariance_history(free, linearize_pair(free), np.array([0.0, DURATION]), modulation="ground")[-1]
+    covariance = LinearizedPair.of(free).covariance_history(np.array([0.0, duration]), modulation="ground")[-1]
     lin = {
         "x1": np.sqrt(covariance[0, 0]), "x2": np.sqrt(covariance[1, 1]),
         "X": np.sqrt(covariance[0, 0] + covariance[1, 1] - 2 * covariance[0, 1]),
@@ -80,9 +77,10 @@ def diagnose(name: str) -> None:
     print(f"  upcrossings of the gap faster than r sigma_V, Monte Carlo / Rayleigh: {tail} ({crossing_velocities.size} crossings)")
 
 
-def main() -> None:
-    for name in CASES:
-        diagnose(name)
+def main(cases: int | None = None, records: int = RECORDS, duration: float = DURATION) -> None:
+    """The tables of the first ``cases`` of :data:`CASES` (all for None), ``records`` records of ``duration`` [s]."""
+    for name in first(CASES, cases):
+        diagnose(name, records, duration)
 
 
 if __name__ == "__main__":

@@ -1,0 +1,197 @@
+"""Write ``pounding/data/accuracy.json``: how far the recommended force was
+measured from Monte Carlo, by regime, and the fraction of simulated records
+pounding at the gap given for 95 % no pounding, by kind of pair. The
+estimate reads it (:func:`pounding.regimes.accuracy_data`) for the accuracy
+and the warnings it states.
+
+- Kanai-Tajimi force: the grid (``pounding.validation.accuracy_cases``) and
+  the draws ``random_cases(seed)`` for :data:`SEEDS` against Monte Carlo
+  (300 records, seed 11), by the regime each estimate states, rare pounding
+  split by whether a storey yields (:func:`validation.out_of_sample.measured`);
+- Clough-Penzien force: the cases of :mod:`validation.record_synthesis`
+  (600 records, seed 11), the gap below sigma_X or rare pounding by yielding;
+- the gap for 95 %: the draws against 400 records (seed 9) of their free
+  motion (:func:`validation.out_of_sample.required_gaps`); the yielding kinds
+  are the one-storey pairs, split by whether their floors move together
+  (``pounding.regimes.MOVING_TOGETHER``), as validation/HISTORY.md measured
+  them; Clough-Penzien: :mod:`validation.record_synthesis`'s four pairs,
+  1,000 records simulated at the gap (seed 9).
+
+    python3 -m validation.accuracy_data                  # the full run, 10+ min on 2 cores
+    python3 -m validation.accuracy_data --output /tmp/accuracy.json --cases 2 --records 8 --seeds 2026
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import subprocess
+from pathlib import Path
+
+import numpy as np
+
+from pounding.pair import LinearizedPair
+from pounding.validation import accuracy_cases, random_cases
+
+from .out_of_sample import GAP_SEED, LABELS, measured, required_gaps
+from .record_synthesis import CLOUGH_PENZIEN_RECORDS, DESIGN_RECORDS, DESIGN_SEED, clough_penzien_cases, design_gap_cases, design_gap_fraction
+from .sizes import first
+
+ROOT = Path(__file__).resolve().parent.parent
+DEFAULT_OUTPUT = ROOT / "pounding" / "data" / "accuracy.json"
+SEEDS = (2026, 2027, 2028, 2029)
+RECORDS, SEED = 300, 11  # the Kanai-Tajimi force's Monte Carlo
+GAP_RECORDS = 400  # the required gap's, seed GAP_SEED
+TARGET = 0.95
+YIELDING_FAMILIES = ("SDOF", "SDOF modulated")
+"""The yielding pairs whose required gap is measured: the one-storey ones, as validation/HISTORY.md
+("The gap for 95 % probability of no pounding") measured them; every yielding pair's warning states them."""
+ELASTIC_FAMILIES = ("elastic", "elastic modulated")
+CLOUGH_PENZIEN_LABELS = ("gap below sigma_X", "rare, yielding", "rare, elastic")
+ABOUT = ("How far the recommended closed-form force was measured from Monte Carlo, by regime, and the fraction of "
+         "simulated records pounding at the gap given for 95 % no pounding. Read by pounding.regimes; see docs/accuracy.md.")
+
+
+def force_entry(errors) -> dict:
+    """cases, within 10 %, median |error| and the range of ``errors`` (estimate / Monte Carlo - 1);
+    None where there is no case (only in a reduced run)."""
+    errors = np.asarray(errors, dtype=float)
+    if not errors.size:
+        return {"cases": 0, "within_10_percent": 0, "median_abs_error": None, "low": None, "high": None}
+    return {
+        "cases": int(errors.size),
+        "within_10_percent": int(np.sum(np.abs(errors) <= 0.10)),
+        "median_abs_error": round(float(np.median(np.abs(errors))), 3),
+        "low": round(float(errors.min()), 2),
+        "high": round(float(errors.max()), 2),
+    }
+
+
+def gap_entry(fractions) -> dict:
+    """pairs, mean and largest fraction pounding at the closed-form gap (None without a pair: a reduced run)."""
+    fractions = np.asarray(fractions, dtype=float)
+    if not fractions.size:
+        return {"pairs": 0, "mean": None, "max": None}
+    return {"pairs": int(fractions.size), "mean": round(float(fractions.mean()), 3), "max": round(float(fractions.max()), 4)}
+
+
+def kanai_tajimi_force(seeds, cases: int | None, records: int) -> dict:
+    """The grid's and the draws' errors by regime (the first ``cases`` of each, all for None)."""
+    rows = measured(first(accuracy_cases(), cases), records, SEED)
+    for seed in seeds:
+        rows += measured(first(random_cases(seed), cases), records, SEED)
+    return {label: force_entry([e for regime, _, e in rows if regime == label]) for label in LABELS}
+
+
+def clough_penzien_force(cases: int | None, records: int) -> dict:
+    """:mod:`validation.record_synthesis`'s Clough-Penzien cases: below sigma_X, or rare by yielding."""
+    rows = measured(first(clough_penzien_cases(), cases), records, SEED)
+    labels = [regime if regime.startswith("rare") else "gap below sigma_X" for regime, _, _ in rows]
+    return {label: force_entry([e for (_, _, e), other in zip(rows, labels) if other == label]) for label in CLOUGH_PENZIEN_LABELS}
+
+
+def required_gap(seeds, cases: int | None, gap_records: int, design_records: int) -> dict:
+    """The fractions pounding at the closed-form gap for 95 %, by kind of pair."""
+    rows = required_gaps(seeds, gap_records, TARGET, cases)
+    yielding = [row for row in rows if row.family in YIELDING_FAMILIES]
+    clough_penzien = {True: [], False: []}
+    for _, case in first(design_gap_cases(), cases):
+        clough_penzien[LinearizedPair.of(case).yielding].append(design_gap_fraction(case, design_records, TARGET)[1])
+    return {
+        "about": (f"fraction of simulated records ({gap_records} each; Clough-Penzien {design_records}) pounding at the "
+                  "closed-form gap for 95 % no pounding, by kind of pair (Kanai-Tajimi yielding: the one-storey pairs)"),
+        "kanai-tajimi, yielding, floors moving together": gap_entry([r.fraction for r in yielding if r.moving_together]),
+        "kanai-tajimi, yielding": gap_entry([r.fraction for r in yielding if not r.moving_together]),
+        "kanai-tajimi, elastic": gap_entry([r.fraction for r in rows if r.family in ELASTIC_FAMILIES]),
+        "clough-penzien, yielding": gap_entry(clough_penzien[True]),
+        "clough-penzien, elastic": gap_entry(clough_penzien[False]),
+    }
+
+
+def git_commit() -> str:
+    """``git rev-parse --short HEAD`` of the repository, or "unknown"."""
+    try:
+        out = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True, check=True, timeout=10)
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+    return out.stdout.strip() or "unknown"
+
+
+def accuracy_document(seeds=SEEDS, cases: int | None = None, records: int = RECORDS, gap_records: int = GAP_RECORDS,
+                      clough_penzien_records: int = CLOUGH_PENZIEN_RECORDS, design_records: int = DESIGN_RECORDS) -> dict:
+    """The data file's content from a run over the first ``cases`` of every source (all for None)."""
+    seeds = [int(seed) for seed in seeds]
+    commit = git_commit()
+    draws = ", ".join(str(seed) for seed in seeds)
+    size = "" if cases is None else f", reduced to the first {cases} cases of each source"
+    grid = f"the {len(accuracy_cases())}-case grid of `pounding validate --grid`" if cases is None else "the grid of `pounding validate --grid`"
+    count = {1: "one random draw", 2: "two random draws", 3: "three random draws", 4: "four random draws"}.get(len(seeds), f"{len(seeds)} random draws")
+    count += f" of {len(random_cases(seeds[0]))} cases" if cases is None and seeds else ""
+    return {
+        "about": ABOUT,
+        "written_by": (f"python3 -m validation.accuracy_data on {datetime.date.today().isoformat()} at commit {commit} "
+                       f"(validation/out_of_sample.py's measured and required_gaps, validation/record_synthesis.py's "
+                       f"Clough-Penzien cases; draws {draws}{size})"),
+        "commit": commit,
+        "monte_carlo": {"records": records, "seed": SEED},
+        "cases": (f"{grid} and {count} (pounding.validation.random_cases, seeds {draws}){size}; "
+                  f"the gap for 95 %: the same draws, {gap_records} records of the free motion, seed {GAP_SEED}; "
+                  f"Clough-Penzien: validation/record_synthesis.py ({clough_penzien_records} records, seed {SEED}; "
+                  f"at the gap for 95 %: {design_records} records, seed {DESIGN_SEED})"),
+        "force": {
+            "kanai-tajimi": kanai_tajimi_force(seeds, cases, records),
+            "clough-penzien": clough_penzien_force(cases, clough_penzien_records),
+        },
+        "required_gap": required_gap(seeds, cases, gap_records, design_records),
+    }
+
+
+def summary(document: dict) -> None:
+    """The measured accuracy as Markdown tables."""
+    print("| spectrum | regime | cases | within 10 % | median abs. error | range |")
+    print("|---|---|---|---|---|---|")
+    for spectrum, table in document["force"].items():
+        for regime, entry in table.items():
+            median = entry.get("median_abs_error")
+            span = "-" if entry["low"] is None else f"{entry['low']:+.0%} to {entry['high']:+.0%}"
+            print(f"| {spectrum} | {regime} | {entry['cases']} | {entry['within_10_percent']} | "
+                  f"{'-' if median is None else f'{median:.1%}'} | {span} |")
+    print("\n| pairs | cases | fraction pounding at the gap for 95 %: mean | largest |")
+    print("|---|---|---|---|")
+    for kind, entry in document["required_gap"].items():
+        if kind != "about":
+            cells = ("-", "-") if entry["mean"] is None else (f"{entry['mean']:.3f}", f"{entry['max']:.3f}")
+            print(f"| {kind} | {entry['pairs']} | {cells[0]} | {cells[1]} |")
+
+
+def main(output=DEFAULT_OUTPUT, seeds=SEEDS, cases: int | None = None, records: int = RECORDS, gap_records: int = GAP_RECORDS,
+         clough_penzien_records: int = CLOUGH_PENZIEN_RECORDS, design_records: int = DESIGN_RECORDS) -> dict:
+    """Measure (the first ``cases`` of every source, all for None), write ``output`` and print the tables.
+    A reduced run is refused at :data:`DEFAULT_OUTPUT`, where the estimate reads the data."""
+    sizes = (records, gap_records, clough_penzien_records, design_records)
+    reduced = cases is not None or any(size < full for size, full in zip(sizes, (RECORDS, GAP_RECORDS, CLOUGH_PENZIEN_RECORDS, DESIGN_RECORDS)))
+    if reduced and Path(output).resolve() == DEFAULT_OUTPUT:
+        raise ValueError(f"a reduced run is not written to {DEFAULT_OUTPUT}: give another output")
+    document = accuracy_document(seeds, cases, records, gap_records, clough_penzien_records, design_records)
+    output = Path(output)
+    output.parent.mkdir(parents=True, exist_ok=True)
+    output.write_text(json.dumps(document, indent=2, ensure_ascii=False) + "\n")
+    summary(document)
+    print(f"\nwrote {output}")
+    return document
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--output", type=Path, default=DEFAULT_OUTPUT, help="where to write (default: pounding/data/accuracy.json)")
+    parser.add_argument("--seeds", type=int, nargs="+", default=list(SEEDS), help="the random draws")
+    reduced = parser.add_argument_group("a reduced run (a smoke test; never into pounding/data)")
+    reduced.add_argument("--cases", type=int, help="the first CASES of every source")
+    reduced.add_argument("--records", type=int, default=RECORDS, help="Monte Carlo records of the force")
+    reduced.add_argument("--gap-records", type=int, default=GAP_RECORDS, help="records for the gap for 95 %%")
+    reduced.add_argument("--clough-penzien-records", type=int, default=CLOUGH_PENZIEN_RECORDS)
+    reduced.add_argument("--design-records", type=int, default=DESIGN_RECORDS, help="Clough-Penzien records at the gap for 95 %%")
+    arguments = parser.parse_args()
+    main(arguments.output, arguments.seeds, arguments.cases, arguments.records, arguments.gap_records,
+         arguments.clough_penzien_records, arguments.design_records)
