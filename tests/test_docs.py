@@ -1,0 +1,71 @@
+"""What the README and docs/ promise: the Python example runs as written, the accuracy table is the data
+file's, and the library cites only documents that are in this repository."""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import re
+from pathlib import Path
+
+import pytest
+
+from pounding.regimes import accuracy_data
+
+ROOT = Path(__file__).resolve().parent.parent
+README = (ROOT / "README.md").read_text()
+
+
+def test_the_readme_python_example_runs():
+    (example,) = re.findall(r"```python\n(.*?)```", README, re.S)
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        exec(compile(example, "README.md", "exec"), {})
+    printed = out.getvalue()
+    assert "kN" in printed and "Monte Carlo" in printed and "nan" not in printed.lower()
+
+
+def _percent(text: str) -> float:
+    return float(text.replace("%", "").replace("+", "").strip()) / 100
+
+
+def test_the_readme_accuracy_table_is_the_data_file():
+    table = README.split("## How accurate is it?")[1].split("\n\n")[2]
+    rows = [line.split("|")[1:-1] for line in table.splitlines()[2:]]
+    measured = accuracy_data()["force"]["kanai-tajimi"]
+    assert len(rows) == len(measured)
+    for regime, _, cases, within, median, span in rows:
+        entry = measured[regime.strip()]
+        low, high = span.split(" to ")
+        assert (int(cases), int(within)) == (entry["cases"], entry["within_10_percent"])
+        assert _percent(median) == pytest.approx(entry["median_abs_error"], abs=5e-4)
+        assert (_percent(low), _percent(high)) == pytest.approx((entry["low"], entry["high"]), abs=5e-3)
+
+
+def test_no_paragraph_of_the_readme_is_over_120_words():
+    prose = re.sub(r"```.*?```", "", README, flags=re.S)
+    for paragraph in prose.split("\n\n"):
+        if not paragraph.lstrip().startswith("|"):
+            assert len(paragraph.split()) <= 120, paragraph[:80]
+
+
+def test_the_library_cites_only_documents_in_the_repository():
+    cited = set()
+    for path in [*(ROOT / "pounding").rglob("*.py"), *(ROOT / "dashboard").rglob("*.py")]:
+        text = path.read_text()
+        assert "NOTES.md" not in text, path
+        cited.update(re.findall(r"\b((?:docs|validation)/[\w./-]+\.(?:md|py))", text))
+    assert cited, "the library cites its docs"
+    missing = sorted(c for c in cited if not (ROOT / c).is_file())
+    assert missing == []
+
+
+def test_every_cited_equation_of_the_gap_aware_estimator_is_in_the_theory():
+    theory = (ROOT / "docs" / "theory.md").read_text()
+    defined = set(re.findall(r"^\| \(G(\d+)\) \|", theory, re.M))
+    cited = set()
+    for path in (ROOT / "pounding").rglob("*.py"):
+        for first, last in re.findall(r"\bG(\d+)(?:-G(\d+))?\b", path.read_text()):
+            cited.update(str(n) for n in range(int(first), int(last or first) + 1))
+    cited.discard("0")  # G0, the spectrum's intensity
+    assert cited and cited <= defined
