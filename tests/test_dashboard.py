@@ -352,7 +352,12 @@ def test_plot_tabs_draw_their_plots_when_opened(dashboard):
         dashboard.wait_for_function(f"() => ({CANVAS_COUNT_JS})() === {canvases}", timeout=UPDATE_TIMEOUT)
         if tab == "Pounding force history":  # the record of T2 = 0.45 s, not of the first page
             peak = changed.history.contact_force.max() / 1e3  # [kN], as plotted
-            dashboard.wait_for_function(f"() => ({SOURCE_MAX_JS})(['time', 'force']) !== null", timeout=UPDATE_TIMEOUT)
+            # The plots are refilled REDRAW_DELAY_MS after the card: under load the tab may open on the
+            # previous record first, so wait for the refill (a dashboard that never refills times out here).
+            dashboard.wait_for_function(
+                f"() => {{ const v = ({SOURCE_MAX_JS})(['time', 'force']); return v !== null && Math.abs(v - {float(peak)!r}) <= 1e-9 * {float(peak)!r}; }}",
+                timeout=UPDATE_TIMEOUT,
+            )
             assert dashboard.evaluate(f"({SOURCE_MAX_JS})(['time', 'force'])") == pytest.approx(peak, rel=1e-9)
     assert dashboard.errors == []
 
