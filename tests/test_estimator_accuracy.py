@@ -312,7 +312,7 @@ def test_accuracy_rows_carry_the_regime_and_no_relative_error_without_pounding()
 def test_design_gap_statement_follows_whether_the_floors_move_together():
     """The closed-form gap for 95 % was measured safe for one-storey yielding pairs whose contact floors move
     less together (correlation of x1, x2 below MOVING_TOGETHER: at most 0.072 of records pounding, mean 0.035) and
-    unsafe for those that move together (mean 0.069). On pairs drawn with another seed, five of each: the first
+    unsafe for those that move together (mean 0.070). On pairs drawn with another seed, five of each: the first
     stay within sampling of 0.05 (3 standard errors of 400 records), the second pound more often, and only they
     carry the note."""
     rng = np.random.default_rng(7)
