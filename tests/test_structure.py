@@ -105,3 +105,16 @@ def test_an_estimate_imports_no_plotting_library():
             "print(sorted(m for m in ('bokeh', 'holoviews', 'panel', 'matplotlib', 'dask', 'pandas') if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=ROOT)
     assert out.stdout.strip() == "[]"
+
+
+def test_every_data_file_of_the_package_is_in_the_wheel():
+    """pyproject's package data covers every file under pounding/ that is not Python (presets, the accuracy
+    data), so that a non-editable install has them."""
+    import fnmatch
+    import tomllib
+
+    patterns = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]["package-data"]["pounding"]
+    package = ROOT / "pounding"
+    data = [p.relative_to(package).as_posix() for p in package.rglob("*")
+            if p.is_file() and p.suffix not in (".py", ".pyc", ".nbi", ".nbc") and "__pycache__" not in p.parts]
+    assert data and all(any(fnmatch.fnmatch(name, pattern) for pattern in patterns) for name in data)
