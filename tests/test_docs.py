@@ -69,3 +69,14 @@ def test_every_cited_equation_of_the_gap_aware_estimator_is_in_the_theory():
             cited.update(str(n) for n in range(int(first), int(last or first) + 1))
     cited.discard("0")  # G0, the spectrum's intensity
     assert cited and cited <= defined
+
+
+def test_the_user_guide_python_examples_run():
+    guide = (ROOT / "docs" / "user-guide.md").read_text()
+    blocks = re.findall(r"```python\n(.*?)```", guide, re.S)
+    namespace: dict = {}
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        for block in blocks:
+            exec(compile(block, "docs/user-guide.md", "exec"), namespace)
+    assert blocks and namespace["curve"].force_expected.size == 101 and "nan" not in out.getvalue().lower()

@@ -1,4 +1,4 @@
-"""The design rules the code base keeps (docs/user-guide.md, "Layout"): no import cycle, imports inside
+"""The design rules the code base keeps (README.md, "Layout"): no import cycle, imports inside
 functions included; no module over 500 lines; every compiled (numba) function calls compiled functions of its
 own file only, so that numba's on-disk cache, which does not see an edit to a callee in another file, cannot
 go stale; the fast path of ``pounding estimate`` imports no plotting or dashboard library."""
