@@ -159,7 +159,8 @@ def _parser() -> argparse.ArgumentParser:
         epilog="example:\n  pounding dashboard --port 5006 --show",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    dashboard.add_argument("--port", type=_non_negative_int, default=5006, help="port (default 5006; 0 picks a free one)")
+    from .serve import port_number  # light: the server is started by a child process
+    dashboard.add_argument("--port", type=port_number, default=5006, help="port in [0, 65535] (default 5006; 0 picks a free one)")
     dashboard.add_argument("--show", action="store_true", help="open a browser tab")
     dashboard.add_argument("--allow-websocket-origin", action="append", default=[], help="extra allowed websocket origin (host:port)")
     return parser
@@ -396,8 +397,7 @@ def _validate(args) -> int:
 def _dashboard(args) -> int:
     from .serve import serve_dashboard
 
-    serve_dashboard(port=args.port, show=args.show, extra_origins=args.allow_websocket_origin)
-    return 0
+    return 0 if serve_dashboard(port=args.port, show=args.show, extra_origins=args.allow_websocket_origin) == 0 else 1
 
 
 def _report(args) -> int:
@@ -406,6 +406,7 @@ def _report(args) -> int:
 
     from .case import load_case
     from .errors import CaseError, check_probability
+    from .output import check_target
     from .simulation import design_gap, simulate
 
     if args.design_gap is not None:
@@ -413,9 +414,8 @@ def _report(args) -> int:
         if not args.records:
             raise CaseError("--design-gap", "needs records: give --records N (N >= 1)")
     case = load_case(args.case)
+    check_target(args.output, "--output", probe=True)  # before any work: "", a device, a folder, read-only are refused
     path = Path(args.output)
-    if not path.parent.is_dir():
-        raise CaseError("--output", f"the folder {str(path.parent)!r} does not exist")
     # The plotting libraries load here only: every other command stays fast.
     from .report import MonteCarloPoint, compute_snapshot, write_report
 
@@ -433,7 +433,7 @@ def _report(args) -> int:
     monte_carlo = (MonteCarloPoint.from_result(run(simulate)),) if args.records else ()
     free = run(partial(design_gap, target_probability=args.design_gap)) if args.design_gap is not None else None
     snapshot = replace(snapshot, monte_carlo=monte_carlo, design_gap=free)
-    write_report(path, snapshot, units=args.units)
+    write_report(path, snapshot, units=args.units, field="--output")
     if args.json:
         figures = snapshot.estimate.to_dict()
         if monte_carlo:
@@ -448,8 +448,12 @@ def _report(args) -> int:
 
 def _sweep(args) -> int:
     from . import sweeps
+    from .errors import CaseError
 
-    return sweeps.run(args)
+    try:
+        return sweeps.run(args)
+    except CaseError as error:  # the library names the folder output_dir; the user wrote -o
+        raise (CaseError("--output", error.message) if error.field == "output_dir" else error) from None
 
 
 _COMMANDS = {
@@ -466,10 +470,13 @@ _COMMANDS = {
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``pounding`` command."""
     from .errors import CaseError, ConvergenceError, SimulationError
+    from .output import describe_os_error
 
     args = _parser().parse_args(argv)
     try:
-        return _COMMANDS[args.command](args)
+        status = _COMMANDS[args.command](args)
+        sys.stdout.flush()  # a full disk or a closed pipe on stdout shows here, not at exit
+        return status
     except CaseError as error:
         print(f"pounding {args.command}: error: {error}", file=sys.stderr)
         return EXIT_BAD_INPUT
@@ -483,6 +490,9 @@ def main(argv: list[str] | None = None) -> int:
         # The reader (e.g. `head`) left early; that is not an error of ours.
         sys.stderr.close()
         return 0
+    except OSError as error:  # a read-only folder, a full disk (a file or stdout): one line, no traceback
+        print(f"pounding {args.command}: error: {describe_os_error(error)}", file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

@@ -6,11 +6,11 @@ from __future__ import annotations
 import html
 import os
 import re
-import tempfile
 from datetime import datetime, timezone
 from pathlib import Path
 
 from ..case import Case
+from ..output import check_target, write_atomic
 from ..regimes import accuracy_data
 from .card import RESULT_CSS, result_html
 from .display_units import display
@@ -148,32 +148,31 @@ def _without_server_scripts(text: str) -> str:
     return _EXTERNAL.sub("", text)
 
 
-def write_report(path: str | os.PathLike, snapshot: Snapshot | Case, units: str = "SI", title: str | None = None) -> Path:
+def write_report(path: str | os.PathLike, snapshot: Snapshot | Case, units: str = "SI", title: str | None = None,
+                 field: str = "path") -> Path:
     """Write the static report of ``snapshot`` (or of a case, computed here) to ``path``.
 
-    The file is written atomically: to a temporary file beside ``path``, then
-    renamed over it, so a failed or interrupted write leaves no partial file.
+    The file is written atomically (:func:`pounding.output.write_atomic`): to a
+    temporary file beside ``path``, then renamed over it, so a failed or
+    interrupted write leaves no partial file; its mode is the usual one (0644
+    under the default umask).
 
     Returns
     -------
     Path
         ``path``.
+
+    Raises
+    ------
+    CaseError
+        ``path`` cannot be a file: empty, an existing device, folder or other
+        non-regular file, or in a folder that does not exist (naming ``field``).
+    OSError
+        The system refused the write (read-only folder, full disk), naming ``path``.
+        Both are checked before the report is computed (a full disk excepted).
     """
-    path = Path(path)
+    check_target(path, field, probe=True)
     if isinstance(snapshot, Case):
         snapshot = compute_snapshot(snapshot)
     text = report_html(snapshot, units, title)
-    descriptor, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(descriptor, "w", encoding="utf-8") as stream:
-            stream.write(text)
-            stream.flush()
-            os.fsync(stream.fileno())
-        os.replace(temporary, path)
-    except BaseException:
-        try:
-            os.unlink(temporary)
-        except FileNotFoundError:
-            pass
-        raise
-    return path
+    return write_atomic(path, text, field)

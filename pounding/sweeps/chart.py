@@ -7,16 +7,20 @@ import os
 from collections.abc import Sequence
 from pathlib import Path
 
-from .store import write_atomic
+from ..output import write_atomic
+from .store import FIELD
 
 
-def write_chart(table, paths: Sequence[str], path: str | os.PathLike, units: str = "SI", title: str = "Sweep") -> Path:
+def write_chart(table, paths: Sequence[str], path: str | os.PathLike, units: str = "SI", title: str = "Sweep",
+                field: str = FIELD) -> Path:
     """The design chart: expected extreme force and pounding probability
     against the first varied key, closed form (lines) and Monte Carlo (dots,
     95 % CI whiskers); one colour per combination of the other varied keys.
 
     A static HTML page (Bokeh, resources inline: no server, no network),
-    written atomically. Returns ``path``.
+    written atomically (:func:`pounding.output.write_atomic`; a bad target is
+    refused with a :class:`~pounding.errors.CaseError` naming ``field``).
+    Returns ``path``.
     """
     from bokeh.embed import file_html
     from bokeh.layouts import row
@@ -63,5 +67,5 @@ def write_chart(table, paths: Sequence[str], path: str | os.PathLike, units: str
         legend = Legend(items=items, click_policy="hide", label_text_font_size="8pt")
         plot.add_layout(legend, "below")
     text = file_html(row(force, probability), resources=INLINE, title=title)
-    write_atomic(path, text.encode("utf-8"))
+    write_atomic(path, text, field, make_parents=True)
     return path

@@ -13,10 +13,11 @@ from pathlib import Path
 
 from .. import defaults
 from ..errors import CaseError
+from ..output import check_folder, check_target, write_atomic
 from .chart import write_chart
 from .points import Point, case_data, sweep_points
 from .spec import normalized_vary
-from .store import Store, write_atomic, write_json
+from .store import FIELD, Store, write_json
 from .work import DEFAULT_TOLERANCE, chunk_sums, point_estimate, warm
 
 CHUNK_RECORDS = 100
@@ -242,7 +243,8 @@ def sweep(
         not depend on ``chunk_records``, workers or scheduler.
     output_dir : str or path
         Folder of the finished chunks, the table and the chart (made if missing).
-        Rerunning with the same folder computes only what is missing.
+        Rerunning with the same folder computes only what is missing; temporary
+        files left there by a killed run are removed.
     scheduler : None, str or distributed.Client
         None: a local Dask cluster of ``workers`` processes (default: one per
         core), started and stopped here. An address (``"tcp://host:8786"``):
@@ -285,7 +287,11 @@ def sweep(
     ------
     CaseError
         A bad varied path or value (field ``--vary``), a point whose case is
-        invalid (naming its field and the point), bad counts.
+        invalid (naming its field and the point), bad counts; an
+        ``output_dir`` that is not a folder, or a table or chart target in it
+        that is not a regular file (field ``output_dir``).
+    OSError
+        The system refused a write (read-only folder, full disk), naming the file.
     SweepInterrupted
         ``max_chunks`` reached.
     pounding.SimulationError
@@ -309,7 +315,11 @@ def sweep(
     varied = normalized_vary(vary)
     paths = [path for path, _ in varied]
     points = sweep_points(data, name, varied, seed, tolerance)
+    check_folder(output_dir, FIELD)  # a bad folder, table or chart target is refused before any work
     store = Store(Path(output_dir))
+    table_path = store.root / f"sweep.{table_format}"
+    for target in (table_path, store.root / "sweep.html") if chart else (table_path,):
+        check_target(target, FIELD, make_parents=True)
     units = str(data.get("units", "SI"))
     store.write_manifest({
         "case": name, "units": units, "vary": {path: list(values) for path, values in varied}, "records": records,
@@ -333,7 +343,6 @@ def sweep(
 
     table = _table(points, paths, chunks, store, records, seed)
     table.attrs.update(chunks_computed=computed, chunks_reused=reused, units=units)
-    table_path = store.root / f"sweep.{table_format}"
     _write_table(table, table_path, table_format)
     table.attrs["table"] = str(table_path)
     table.attrs["chart"] = None
@@ -429,8 +438,8 @@ def _write_table(table, path: Path, table_format: str) -> None:
     import io
 
     if table_format == "csv":
-        write_atomic(path, table.to_csv(index=False).encode())
+        write_atomic(path, table.to_csv(index=False), FIELD, make_parents=True)
     else:
         buffer = io.BytesIO()
         table.to_parquet(buffer, index=False)
-        write_atomic(path, buffer.getvalue())
+        write_atomic(path, buffer.getvalue(), FIELD, make_parents=True)

@@ -1,39 +1,21 @@
-"""Files: atomic writes, JSON read and written, and the chunk store (the
-files of a sweep in its output folder)."""
+"""Files: JSON read and written (atomically, by :mod:`pounding.output`), and
+the chunk store (the files of a sweep in its output folder)."""
 
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 from pathlib import Path
 
-from ..errors import CaseError
+from ..output import check_folder, remove_stale, write_atomic
 from .points import Point
 
-
-def write_atomic(path: Path, data: bytes) -> None:
-    """Write ``data`` to a temporary file beside ``path``, then rename it over
-    ``path``: a reader sees the whole file or none."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    descriptor, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(descriptor, "wb") as stream:
-            stream.write(data)
-            stream.flush()
-            os.fsync(stream.fileno())
-        os.chmod(temporary, 0o644)  # mkstemp makes it private
-        os.replace(temporary, path)
-    except BaseException:
-        try:
-            os.unlink(temporary)
-        except OSError:
-            pass
-        raise
+FIELD = "output_dir"
+"""The field the sweep's file errors name (the CLI shows it as ``--output``)."""
 
 
 def write_json(path: Path, value) -> None:
-    write_atomic(path, (json.dumps(value, indent=1) + "\n").encode())
+    """``value`` as JSON in ``path``, atomically (:func:`pounding.output.write_atomic`), its folder made if missing."""
+    write_atomic(path, json.dumps(value, indent=1) + "\n", FIELD, make_parents=True)
 
 
 def _read_json(path: Path):
@@ -59,9 +41,18 @@ class Store:
     def chunk_path(self, point: Point, first: int, count: int) -> Path:
         return self.point_dir(point) / f"chunk-{first:09d}-{count}.json"
 
+    def remove_stale(self) -> int:
+        """Remove the temporary files left by a killed sweep in this folder (not those of a sweep running)."""
+        removed = remove_stale(self.root)
+        try:
+            points = list((self.root / "points").iterdir())
+        except OSError:
+            return removed
+        return removed + sum(remove_stale(folder) for folder in points)
+
     def write_manifest(self, manifest: dict) -> None:
-        if self.root.exists() and not self.root.is_dir():
-            raise CaseError("output", f"{str(self.root)!r} exists and is not a folder")
+        check_folder(self.root, FIELD, create=True)
+        self.remove_stale()
         write_json(self.root / "sweep.json", manifest)
 
     def write_point(self, point: Point, paths: list[str]) -> None:
