@@ -13,7 +13,7 @@ import sys
 from functools import lru_cache, partial
 
 from . import defaults
-from .arguments import whole_number
+from .arguments import bounded_number, probability, record_count, tolerance, whole_number
 
 EXIT_BAD_INPUT = 2
 
@@ -71,12 +71,12 @@ def _parser() -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     simulate.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
-    simulate.add_argument("--records", type=_positive_int, default=defaults.RECORDS, help=f"number of records (default {defaults.RECORDS})")
+    simulate.add_argument("--records", type=record_count, default=defaults.RECORDS, help=f"number of records (default {defaults.RECORDS})")
     simulate.add_argument("--seed", type=_non_negative_int, default=0, help="seed of the study (default 0)")
-    simulate.add_argument("--tolerance", type=float, default=defaults.INTEGRATOR_TOLERANCE,
+    simulate.add_argument("--tolerance", type=tolerance, default=defaults.INTEGRATOR_TOLERANCE,
                           help=f"relative tolerance of the integrator (default {defaults.INTEGRATOR_TOLERANCE:g})")
     simulate.add_argument("--json", action="store_true", help="print one JSON object (SI units) instead of a table")
-    simulate.add_argument("--design-gap", type=float, metavar="P", default=None,
+    simulate.add_argument("--design-gap", type=probability, metavar="P", default=None,
                           help="instead, the gap for probability P of no pounding, in (0, 1): a record pounds at a gap "
                           "exactly when its free relative displacement exceeds it, so the records' free motion gives it")
 
@@ -90,12 +90,12 @@ def _parser() -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     estimate.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
-    estimate.add_argument("--target-probability", type=float, default=defaults.TARGET_PROBABILITY,
+    estimate.add_argument("--target-probability", type=probability, default=defaults.TARGET_PROBABILITY,
                           help=f"target probability of no pounding during the record, in (0, 1) (default {defaults.TARGET_PROBABILITY:g})")
     estimate.add_argument("--paper-variance", choices=("eq28", "exact"), default="eq28",
                           help="the paper's method under an envelope: sigma_V(t) by Eq. 28 (default, as published) "
                           "or by the exact time-varying covariance")
-    estimate.add_argument("--michaelov-n1", type=float, default=defaults.MICHAELOV_N1, metavar="N1",
+    estimate.add_argument("--michaelov-n1", type=bounded_number(*defaults.MICHAELOV_N1_RANGE), default=defaults.MICHAELOV_N1, metavar="N1",
                           help="the paper's method under an envelope: order n1 of the moments of Michaelov's equivalent "
                           "stationary process, Eq. 29, in [{:g}, {:g}] (default {:g}, as the paper)".format(
                               *defaults.MICHAELOV_N1_RANGE, defaults.MICHAELOV_N1))
@@ -110,7 +110,7 @@ def _parser() -> argparse.ArgumentParser:
         epilog="examples:\n  pounding validate\n  pounding validate --records 100 --json > tables.json",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    validate.add_argument("--records", type=_positive_int, default=defaults.VALIDATION_RECORDS,
+    validate.add_argument("--records", type=record_count, default=defaults.VALIDATION_RECORDS,
                           help=f"Monte Carlo records per case (default {defaults.VALIDATION_RECORDS})")
     validate.add_argument("--seed", type=_non_negative_int, default=defaults.VALIDATION_SEED,
                           help=f"seed of the studies (default {defaults.VALIDATION_SEED})")

@@ -27,6 +27,7 @@ force itself is compiled in :func:`pounding.integrator.contact_force`):
 from __future__ import annotations
 
 import math
+import numbers
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
@@ -34,7 +35,7 @@ from functools import lru_cache
 import numpy as np
 
 from . import integrator
-from .errors import CaseError
+from .errors import CaseError, finite_number, quote
 from .integrator import contact_force, single_impact_peak
 
 __all__ = [
@@ -127,10 +128,9 @@ CONTACT_MODELS = tuple(CONTACT_LAWS)
 
 def contact_law(name: str, field: str = "model") -> ContactLaw:
     """The law called ``name``; :class:`CaseError` naming ``field`` otherwise."""
-    try:
+    if isinstance(name, str) and name in CONTACT_LAWS:
         return CONTACT_LAWS[name]
-    except (KeyError, TypeError):
-        raise CaseError(field, f"unknown contact model {name!r}; allowed: {', '.join(CONTACT_MODELS)}") from None
+    raise CaseError(field, f"unknown contact model {quote(name)}; allowed: {', '.join(CONTACT_MODELS)}")
 
 
 def hertz_peak_penetration(approach_velocity: float, stiffness: float, reduced_mass: float) -> float:
@@ -166,19 +166,20 @@ class Contact:
     def __post_init__(self):
         contact_law(self.model)
         for name in ("gap", "stiffness", "restitution"):
-            value = getattr(self, name)
-            if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value):
-                raise CaseError(name, f"must be a finite number, got {value!r}")
+            object.__setattr__(self, name, finite_number(name, getattr(self, name)))
         if self.gap < 0:
             raise CaseError("gap", f"must be >= 0 m, got {self.gap:g}")
         if self.stiffness <= 0:
             raise CaseError("stiffness", f"must be > 0, got {self.stiffness:g}")
         if not 0.0 < self.restitution <= 1.0:
             raise CaseError("restitution", f"must lie in (0, 1], got {self.restitution:g}")
-        levels = tuple(self.levels)
-        if len(levels) != 2 or not all(isinstance(v, int) and not isinstance(v, bool) and v >= 1 for v in levels):
-            raise CaseError("levels", f"must be two floor numbers >= 1 (building 1, building 2), got {self.levels!r}")
-        object.__setattr__(self, "levels", levels)
+        levels = self.levels
+        wrong = CaseError("levels", f"must be two floor numbers >= 1 (building 1, building 2), got {quote(levels)}")
+        if isinstance(levels, (str, bytes, dict)) or not hasattr(levels, "__len__") or len(levels) != 2:
+            raise wrong
+        if not all(isinstance(v, numbers.Integral) and not isinstance(v, bool) and v >= 1 for v in levels):
+            raise wrong
+        object.__setattr__(self, "levels", tuple(int(v) for v in levels))
 
     @property
     def law(self) -> ContactLaw:

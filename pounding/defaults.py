@@ -1,10 +1,22 @@
 """The defaults of the library, the command line, the report and the
-dashboard, each written once (they all read them from here)."""
+dashboard, each written once (they all read them from here); and the
+resource limits every input is checked against before anything is allocated."""
 
 from __future__ import annotations
 
+import os
+
 __all__ = [
     "CASE",
+    "LIMITS_VARIABLE",
+    "MAX_CASE_FILE_BYTES",
+    "MAX_CHUNK_SAMPLES",
+    "MAX_HISTORY_VALUES",
+    "MAX_RECORDS",
+    "MAX_SAMPLES_PER_RECORD",
+    "MAX_STOREYS",
+    "MAX_SWEEP_POINTS",
+    "MAX_SYNTHESIS_SAMPLES",
     "DASHBOARD_RECORDS",
     "DESIGN_GAP_RECORDS",
     "INTEGRATOR_TOLERANCE",
@@ -16,6 +28,7 @@ __all__ = [
     "TARGET_PROBABILITY",
     "VALIDATION_RECORDS",
     "VALIDATION_SEED",
+    "limits_enabled",
 ]
 
 CASE = "section5-T2-0.4"
@@ -42,3 +55,35 @@ VALIDATION_SEED = 1
 """Seed of ``pounding validate``'s studies."""
 REPORT_SEED = 1
 """Seed of the report's and the dashboard's Monte Carlo studies."""
+
+# --- resource limits ---------------------------------------------------------
+# Chosen for a machine of 2 cores and 24 GB: each lets a case at the limit run
+# in minutes and well inside the memory; one key beyond it is refused (CaseError
+# naming the key, in well under a second) before anything is allocated.
+# Costs measured on such a machine (docs/user-guide.md, "Limits").
+
+LIMITS_VARIABLE = "POUNDING_LIMITS"
+"""Environment variable: ``POUNDING_LIMITS=off`` lifts every limit below, knowingly, on a bigger machine."""
+MAX_SAMPLES_PER_RECORD = 2**21
+"""Samples per record, duration / time_step + 1: 2,097,152 (10,485 s at 0.005 s); a record of the Section 5 pair at the limit integrates in 1.4 s, its full history (simulate_record) in 1.8 s and 0.5 GB."""
+MAX_SYNTHESIS_SAMPLES = 2**24
+"""Length of a record's synthesis FFT (synthesis_factor times the power of two >= the samples): 16,777,216; one record at the limit is drawn in 3 s with 0.6 GB."""
+MAX_RECORDS = 1_000_000
+"""Records of one Monte Carlo study: the Section 5 case at the limit runs about 25 min on 2 cores (1.5 ms a record) and holds 0.3 GB of results."""
+MAX_STOREYS = 20
+"""Storeys per building: the closed form of a 20 + 20-storey case takes 14 s and 1.8 GB (10 + 10: 1.6 s, 0.3 GB; it grows steeply: 50 + 50 takes minutes)."""
+MAX_SWEEP_POINTS = 10_000
+"""Points of a parametric study (the product of the --vary counts): 10,000 are checked and loaded in 2 s, 0.15 GB; their estimates take 2 min on one core, plus their records."""
+MAX_CASE_FILE_BYTES = 1_000_000
+"""Size of a case file [bytes] (a preset is 1 kB, a 20 + 20-storey case 6 kB)."""
+MAX_CHUNK_SAMPLES = 2**24
+"""Ground-acceleration samples one thread holds at once, Settings.chunk_size x samples per record: 16,777,216 (0.13 GB; 8 records at the sample limit)."""
+MAX_HISTORY_VALUES = 2**27
+"""Values of a full time history kept by integrate and simulate_record, steps x (3 x floors + 2): 134,217,728 (1 GiB)."""
+
+
+def limits_enabled() -> bool:
+    """Whether the resource limits above apply: unless ``POUNDING_LIMITS=off`` (read at each check)."""
+    return os.environ.get(LIMITS_VARIABLE, "").strip().lower() != "off"
+ACCURACY_SEED = 11
+"""Seed of the Monte Carlo studies of the accuracy grid (``pounding validate --grid``) and of the accuracy data."""

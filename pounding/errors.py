@@ -1,8 +1,24 @@
-"""Exceptions raised at the library's boundary."""
+"""Exceptions raised at the library's boundary, and the checks of its inputs
+shared by the dataclasses, the loader and the command line."""
 
 from __future__ import annotations
 
-__all__ = ["CaseError", "ConvergenceError", "SimulationError", "check_probability"]
+import math
+import numbers
+
+from . import defaults
+
+__all__ = [
+    "CaseError",
+    "ConvergenceError",
+    "SimulationError",
+    "check_limit",
+    "check_probability",
+    "described",
+    "finite_number",
+    "quote",
+    "whole_number",
+]
 
 
 class CaseError(ValueError):
@@ -12,9 +28,10 @@ class CaseError(ValueError):
     ----------
     field : str
         Dotted path of the offending input, as in the case file
-        (``"buildings.2.storeys.1.mass"``), buildings and storeys counted from 1.
+        (``"buildings.2.storeys.1.mass"``), buildings and storeys counted from 1;
+        a command-line option as typed (``"--records"``).
     message : str
-        What is allowed.
+        What is wrong and what is allowed.
     """
 
     def __init__(self, field: str, message: str):
@@ -37,7 +54,80 @@ class ConvergenceError(RuntimeError):
     """An iteration (e.g. statistical linearization) did not converge."""
 
 
-def check_probability(value, field: str = "target_probability") -> None:
-    """Raise :class:`CaseError` naming ``field`` unless ``value`` lies in (0, 1)."""
-    if isinstance(value, bool) or not (isinstance(value, float | int) and 0.0 < value < 1.0):
-        raise CaseError(field, f"must lie in (0, 1), got {value!r}")
+def quote(value, width: int = 40) -> str:
+    """``repr(value)``, shortened to ``width`` characters (messages stay one short line)."""
+    if isinstance(value, float) or (isinstance(value, numbers.Real) and not isinstance(value, numbers.Integral)):
+        try:
+            text = repr(float(value))  # 2.0 stays 2.0: a float where a whole number is needed shows
+            text = text if len(text) <= 12 else f"{float(value):.6g}"
+        except (OverflowError, ValueError):
+            text = repr(value)
+    elif isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        number = int(value)
+        text = str(number) if abs(number) < 10**15 else f"{float(number):.6g}" if abs(number) < 10**300 else "a huge number"
+    else:
+        text = repr(value)
+    return text if len(text) <= width else text[: width - 3] + "..."
+
+
+def described(value) -> str:
+    """``value``'s type and shortened repr, for a message: ``"str 'x'"``."""
+    return f"{type(value).__name__} {quote(value)}"
+
+
+def _is_number(value) -> bool:
+    # numpy's float and integer scalars are numbers.Real; bool and numpy.bool_ are refused.
+    return isinstance(value, numbers.Real) and not isinstance(value, bool) and type(value).__name__ != "bool_"
+
+
+def finite_number(field: str, value) -> float:
+    """``value`` as a Python float: a finite real number (Python or numpy scalar);
+    :class:`CaseError` naming ``field`` otherwise."""
+    if not _is_number(value):
+        raise CaseError(field, f"must be a finite number, got {quote(value)}")
+    try:
+        number = float(value)
+    except (OverflowError, ValueError, TypeError):
+        raise CaseError(field, f"must be a finite number, got {quote(value)}") from None
+    if not math.isfinite(number):
+        raise CaseError(field, f"must be a finite number, got {quote(value)}")
+    return number
+
+
+def whole_number(field: str, value, minimum: int | None = None, maximum: int | None = None) -> int:
+    """``value`` as a Python int: a whole number (Python or numpy integer) in
+    [``minimum``, ``maximum``]; :class:`CaseError` naming ``field`` otherwise."""
+    if not (_is_number(value) and isinstance(value, numbers.Integral)):
+        allowed = f" >= {minimum}" if minimum is not None and maximum is None else ""
+        raise CaseError(field, f"must be a whole number{allowed}, got {quote(value)}")
+    number = int(value)
+    if minimum is not None and number < minimum or maximum is not None and number > maximum:
+        allowed = f"from {minimum} to {maximum}" if maximum is not None and minimum is not None else (
+            f">= {minimum}" if maximum is None else f"<= {maximum}")
+        raise CaseError(field, f"must be a whole number {allowed}, got {quote(number)}")
+    return number
+
+
+def check_limit(field: str, count, limit: int, what: str, remedy: str) -> None:
+    """Raise :class:`CaseError` naming ``field`` when ``count`` exceeds ``limit``
+    (one of the resource limits of :mod:`pounding.defaults`) while the limits
+    are on (:func:`pounding.defaults.limits_enabled`).
+
+    ``what`` names the counted thing ("samples per record"), ``remedy`` what
+    to change; the message says how to lift the limits.
+    """
+    if not math.isfinite(count) or count > limit and defaults.limits_enabled():
+        amount = f"{count:,.0f}" if math.isfinite(count) and count < 1e15 else f"{count:.3g}"
+        lift = f" ({defaults.LIMITS_VARIABLE}=off lifts it)" if math.isfinite(count) else ""
+        raise CaseError(field, f"{amount} {what} exceed the limit of {limit:,}; {remedy}{lift}")
+
+
+def check_probability(value, field: str = "target_probability") -> float:
+    """``value`` as a float if it lies in (0, 1); :class:`CaseError` naming ``field`` otherwise."""
+    try:
+        number = float(value) if _is_number(value) else math.nan
+    except (OverflowError, ValueError, TypeError):
+        number = math.nan
+    if not 0.0 < number < 1.0:
+        raise CaseError(field, f"must lie in (0, 1), got {quote(value)}")
+    return number

@@ -9,11 +9,13 @@ acceleration is the integral of S_g over (-inf, inf).
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import CaseError
+from . import defaults
+from .errors import CaseError, check_limit, described, finite_number, quote, whole_number
 
 __all__ = [
     "CloughPenzien",
@@ -22,18 +24,25 @@ __all__ = [
     "ShinozukaSato",
     "ground_acceleration",
     "ground_accelerations",
+    "check_samples",
     "record_rng",
 ]
 
 
-def _positive(field: str, value: float) -> None:
-    if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-        raise CaseError(field, f"must be a finite number > 0, got {value!r}")
+def _positive(instance, field: str) -> None:
+    """Check ``instance.field`` is a finite number > 0 and store it as a float."""
+    value = finite_number(field, getattr(instance, field))
+    if not value > 0:
+        raise CaseError(field, f"must be a finite number > 0, got {quote(value)}")
+    object.__setattr__(instance, field, value)
 
 
-def _non_negative(field: str, value: float) -> None:
-    if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
-        raise CaseError(field, f"must be a finite number >= 0, got {value!r}")
+def _non_negative(instance, field: str) -> None:
+    """Check ``instance.field`` is a finite number >= 0 and store it as a float."""
+    value = finite_number(field, getattr(instance, field))
+    if not value >= 0:
+        raise CaseError(field, f"must be a finite number >= 0, got {quote(value)}")
+    object.__setattr__(instance, field, value)
 
 
 @dataclass(frozen=True)
@@ -56,9 +65,9 @@ class KanaiTajimi:
     xi_g: float
 
     def __post_init__(self):
-        _non_negative("G0", self.G0)
-        _positive("omega_g", self.omega_g)
-        _positive("xi_g", self.xi_g)
+        _non_negative(self, "G0")
+        _positive(self, "omega_g")
+        _positive(self, "xi_g")
 
     def filter_response(self, omega):
         """|H_g(omega)|^2 of the soil filter (the fraction in Eq. 7) [-]."""
@@ -94,8 +103,8 @@ class CloughPenzien(KanaiTajimi):
 
     def __post_init__(self):
         super().__post_init__()
-        _positive("omega_f", self.omega_f)
-        _positive("xi_f", self.xi_f)
+        _positive(self, "omega_f")
+        _positive(self, "xi_f")
 
     def psd(self, omega):
         w2 = np.square(omega)
@@ -125,8 +134,8 @@ class ShinozukaSato:
     B2: float = 0.17
 
     def __post_init__(self):
-        _positive("B1", self.B1)
-        _positive("B2", self.B2)
+        _positive(self, "B1")
+        _positive(self, "B2")
         if not self.B2 > self.B1:
             raise CaseError("B2", f"must be greater than B1 = {self.B1}, got {self.B2}")
 
@@ -184,11 +193,16 @@ class Excitation:
 
     def __post_init__(self):
         factor = self.synthesis_factor
-        if not (isinstance(factor, int) and not isinstance(factor, bool) and 1 <= factor <= 64):
-            raise CaseError("synthesis_factor", f"must be an integer from 1 to 64, got {factor!r}")
-        _positive("duration", self.duration)
-        _positive("time_step", self.time_step)
-        _positive("cutoff_frequency", self.cutoff_frequency)
+        if not (isinstance(factor, numbers.Integral) and not isinstance(factor, bool) and 1 <= factor <= 64):
+            raise CaseError("synthesis_factor", f"must be an integer from 1 to 64, got {quote(factor)}")
+        object.__setattr__(self, "synthesis_factor", whole_number("synthesis_factor", factor))
+        if not isinstance(self.spectrum, KanaiTajimi):
+            raise CaseError("spectrum", f"must be a KanaiTajimi or CloughPenzien, got {described(self.spectrum)}")
+        if self.envelope is not None and not isinstance(self.envelope, ShinozukaSato):
+            raise CaseError("envelope", f"must be a ShinozukaSato or None, got {described(self.envelope)}")
+        _positive(self, "duration")
+        _positive(self, "time_step")
+        _positive(self, "cutoff_frequency")
         if self.time_step > self.duration / 10:
             raise CaseError("time_step", f"must be at most duration/10 = {self.duration / 10:g} s, got {self.time_step:g}")
         nyquist = math.pi / self.time_step
@@ -197,6 +211,7 @@ class Excitation:
                 "cutoff_frequency",
                 f"must be below the Nyquist frequency pi/time_step = {nyquist:.4g} rad/s, got {self.cutoff_frequency:.4g}",
             )
+        check_samples(self.duration, self.time_step, self.synthesis_factor)
 
     @property
     def stationary(self) -> bool:
@@ -234,6 +249,23 @@ class Excitation:
         if self.envelope is None:
             return np.ones(self.n_samples)
         return self.envelope(self.times())
+
+
+def check_samples(duration: float, time_step: float, synthesis_factor: int = 1) -> None:
+    """:class:`CaseError` when a record of ``duration`` sampled every ``time_step``
+    [s] would exceed :data:`~pounding.defaults.MAX_SAMPLES_PER_RECORD` samples or
+    its synthesis :data:`~pounding.defaults.MAX_SYNTHESIS_SAMPLES`; counted
+    before anything is allocated. Names ``duration`` when the record is too long
+    even at the default time step, else ``time_step``."""
+    samples = duration / time_step + 1.0  # a float: 1e300 / 1e-300 is inf, not an error
+    default_step = Excitation.__dataclass_fields__["time_step"].default
+    field = "duration" if duration / default_step >= defaults.MAX_SAMPLES_PER_RECORD else "time_step"
+    check_limit(field, samples, defaults.MAX_SAMPLES_PER_RECORD,
+                f"samples per record ({duration:g} s / {time_step:g} s)", "shorten duration or lengthen time_step")
+    # the FFT of synthesis_factor times the power of two >= the samples
+    power = 2.0 ** math.ceil(math.log2(max(samples - 1.0, 1.0)))
+    check_limit("synthesis_factor", synthesis_factor * power, defaults.MAX_SYNTHESIS_SAMPLES,
+                f"synthesis samples ({synthesis_factor} x {power:,.0f})", "lower synthesis_factor")
 
 
 def _one_sided_weights(excitation: Excitation) -> np.ndarray:

@@ -21,9 +21,9 @@ from scipy.special import (  # binomial CDF, Student t quantile; scipy.stats cos
 from . import defaults
 from . import integrator as kernel
 from .case import Case
-from .errors import CaseError, check_probability
+from .errors import CaseError, check_limit, check_probability, described, finite_number, quote
 from .excitation import ground_accelerations
-from .system import Cancelled, Settings, failure, kernel_system
+from .system import Cancelled, Settings, check_records, check_study, failure, kernel_system
 
 __all__ = [
     "Cancelled",
@@ -132,15 +132,6 @@ class SimulationResult:
         }
 
 
-def _check_records(records: int, seed: int, first_record: int) -> None:
-    if isinstance(records, bool) or not isinstance(records, int) or records < 1:
-        raise CaseError("records", f"must be a whole number >= 1, got {records!r}")
-    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise CaseError("seed", f"must be a whole number >= 0, got {seed!r}")
-    if isinstance(first_record, bool) or not isinstance(first_record, int) or first_record < 0:
-        raise CaseError("first_record", f"must be a whole number >= 0, got {first_record!r}")
-
-
 def simulate(
     case: Case,
     records: int = defaults.RECORDS,
@@ -158,9 +149,9 @@ def simulate(
 
     Parameters
     ----------
-    case : Case
+    case : Case, or a preset name or the path of a TOML file
     records : int
-        Number of records.
+        Number of records, at most ``defaults.MAX_RECORDS`` (1,000,000).
     seed : int
         Seed of the study; the same case and seed give the same numbers.
     settings : Settings, optional
@@ -180,10 +171,13 @@ def simulate(
     SimulationError
         When a record's integration fails; names the record and the time.
     """
-    settings = settings or Settings()
-    _check_records(records, seed, first_record)
-    system = kernel_system(case, settings)
+    case, settings = check_study(case, settings, progress, cancel)
+    records, seed, first_record = check_records(records, seed, first_record)
     excitation = case.excitation
+    # the records of one chunk are held at once by a thread: checked before they are drawn
+    check_limit("chunk_size", min(settings.chunk_size, records) * excitation.n_samples, defaults.MAX_CHUNK_SAMPLES,
+                "samples held per thread (chunk_size x samples per record)", "lower Settings.chunk_size")
+    system = kernel_system(case, settings)
     y0 = np.zeros(3 * system.n_floors)
     indices = np.arange(first_record, first_record + records)
     summaries = np.zeros((records, kernel.SUMMARY_COLUMNS))
@@ -314,8 +308,9 @@ def design_gap(
     The records are those :func:`simulate` integrates for the same ``seed``;
     at the gap returned, :func:`simulate` finds the same records pounding.
     """
-    check_probability(target_probability)
-    settings = settings or Settings()
+    target_probability = check_probability(target_probability)
+    case, settings = check_study(case, settings, progress, cancel)
+    records, seed, _ = check_records(records, seed, 0)
     free = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=2.0 * settings.displacement_limit))
     result = simulate(free, records=records, seed=seed, settings=settings, progress=progress, cancel=cancel)
     peaks = result.relative_displacement_max
@@ -379,7 +374,7 @@ def integrate(
 
     Parameters
     ----------
-    case : Case
+    case : Case, or a preset name or the path of a TOML file
         Its excitation is not used: ``ground_acceleration`` is.
     ground_acceleration : ndarray
         Samples at t = k * time_step [m/s^2].
@@ -390,17 +385,45 @@ def integrate(
     label : str
         Names the record in error messages.
     """
-    settings = settings or Settings()
-    system = kernel_system(case, settings)
-    record = np.ascontiguousarray(ground_acceleration, dtype=float)
+    case, settings = check_study(case, settings, None, None)
+    time_step = finite_number("time_step", time_step)
+    if not time_step > 0:
+        raise CaseError("time_step", f"must be > 0 s, got {quote(time_step)}")
+    try:
+        record = np.ascontiguousarray(ground_acceleration, dtype=float)
+    except (TypeError, ValueError):
+        raise CaseError("ground_acceleration", f"must be an array of numbers, got {described(ground_acceleration)}") from None
     if record.ndim != 1 or record.size < 2:
         raise CaseError("ground_acceleration", "must be a 1-D array of at least 2 samples")
+    check_limit("ground_acceleration", record.size, defaults.MAX_SAMPLES_PER_RECORD, "samples", "integrate a shorter record")
+    if not np.all(np.isfinite(record)):
+        raise CaseError("ground_acceleration", "must be finite numbers (no NaN or inf)")
+    return _integrate(case, record, time_step, initial_state, settings, str(label), "ground_acceleration")
+
+
+def _check_history(field: str, samples: int, n_state: int) -> int | None:
+    """The most steps a history of ``n_state`` states may keep (None: no limit). The
+    history is kept at every step, at least one per sample: MAX_HISTORY_VALUES bounds it."""
+    width = n_state + 2
+    check_limit(field, samples * width, defaults.MAX_HISTORY_VALUES, f"history values ({samples:,} samples x {width})",
+                "integrate a shorter record")
+    return defaults.MAX_HISTORY_VALUES // width if defaults.limits_enabled() else None
+
+
+def _integrate(case: Case, record: np.ndarray, time_step: float, initial_state, settings: Settings, label: str,
+               field: str) -> TimeHistory:
+    """:func:`integrate` on checked inputs; ``field`` names the record's length in a limit's message."""
+    system = kernel_system(case, settings)
     n_state = 3 * system.n_floors
-    y0 = np.zeros(n_state) if initial_state is None else np.asarray(initial_state, dtype=float).copy()
-    if y0.shape != (n_state,):
-        raise CaseError("initial_state", f"must have {n_state} entries (d, v, z of every floor), got shape {y0.shape}")
+    try:
+        y0 = np.zeros(n_state) if initial_state is None else np.array(initial_state, dtype=float)
+    except (TypeError, ValueError):
+        raise CaseError("initial_state", f"must be an array of numbers, got {described(initial_state)}") from None
+    if y0.shape != (n_state,) or not np.all(np.isfinite(y0)):
+        raise CaseError("initial_state", f"must be {n_state} finite numbers (d, v, z of every floor), got shape {y0.shape}")
+    most = _check_history(field, record.size, n_state)
     summary = np.zeros(kernel.SUMMARY_COLUMNS)
-    capacity = 8 * record.size
+    capacity = 8 * record.size if most is None else min(8 * record.size, most)
     while True:
         time = np.empty(capacity)
         state = np.empty((capacity, n_state))
@@ -411,7 +434,10 @@ def integrate(
         )
         if summary[kernel.S_STATUS] != kernel.HISTORY_FULL:
             break
-        capacity *= 4
+        if most is not None and capacity >= most:
+            raise CaseError(field, f"the time history takes more than {capacity:,} steps, beyond the {defaults.MAX_HISTORY_VALUES:,} values "
+                            f"kept; integrate a shorter record ({defaults.LIMITS_VARIABLE}=off lifts it)")
+        capacity = capacity * 4 if most is None else min(capacity * 4, most)
     if summary[kernel.S_STATUS] != kernel.OK:
         raise failure(summary, label, settings)
     time, state, force = time[:stored], state[:stored], force[:stored]
@@ -446,6 +472,8 @@ def integrate(
 def simulate_record(case: Case, seed: int = 0, index: int = 0, settings: Settings | None = None) -> TimeHistory:
     """Full time histories of record ``index`` of the study seeded ``seed``
     (the same record ``simulate`` integrates under that index)."""
-    _check_records(1, seed, index)
+    case, settings = check_study(case, settings, None, None)
+    _, seed, index = check_records(1, seed, index)
+    _check_history("excitation.duration", case.excitation.n_samples, 3 * sum(b.n_storeys for b in case.buildings))
     record = ground_accelerations(case.excitation, seed, [index])[0]
-    return integrate(case, record, case.excitation.time_step, settings=settings, label=f"record {index} (seed {seed})")
+    return _integrate(case, record, case.excitation.time_step, None, settings, f"record {index} (seed {seed})", "excitation.duration")

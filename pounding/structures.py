@@ -17,16 +17,17 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.linalg import eigh
 
-from .errors import CaseError
+from . import defaults
+from .errors import CaseError, check_limit, described, finite_number
 from .integrator import bouc_wen_rate, hysteretic_path
 
-__all__ = ["BoucWen", "Building", "Storey", "bouc_wen_rate", "hysteresis"]
+__all__ = ["BoucWen", "Building", "Storey", "bouc_wen_rate", "check_storey_count", "hysteresis"]
 
 
-def _finite(field_name: str, value) -> float:
-    if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value):
-        raise CaseError(field_name, f"must be a finite number, got {value!r}")
-    return float(value)
+def _set(instance, **values) -> None:
+    """Store checked, converted values (Python floats) on a frozen dataclass."""
+    for name, value in values.items():
+        object.__setattr__(instance, name, value)
 
 
 @dataclass(frozen=True)
@@ -53,22 +54,20 @@ class BoucWen:
     n: float = 1.0
 
     def __post_init__(self):
-        alpha = _finite("alpha", self.alpha)
-        if not 0.0 <= alpha <= 1.0:
-            raise CaseError("alpha", f"must lie in [0, 1], got {alpha:g}")
-        if not _finite("A", self.A) > 0:
+        _set(self, **{name: finite_number(name, getattr(self, name)) for name in ("alpha", "A", "beta", "gamma", "n")})
+        if not 0.0 <= self.alpha <= 1.0:
+            raise CaseError("alpha", f"must lie in [0, 1], got {self.alpha:g}")
+        if not self.A > 0:
             raise CaseError("A", f"must be > 0, got {self.A:g}")
-        if not _finite("n", self.n) >= 1:
+        if not self.n >= 1:
             raise CaseError("n", f"must be >= 1, got {self.n:g}")
-        _finite("beta", self.beta)
-        _finite("gamma", self.gamma)
-        if alpha < 1.0 and not self.beta + self.gamma > 0:
+        if self.alpha < 1.0 and not self.beta + self.gamma > 0:
             raise CaseError(
                 "beta",
                 f"beta + gamma must be > 0 for a softening storey with a finite yield displacement, "
                 f"got beta = {self.beta:g}, gamma = {self.gamma:g}",
             )
-        if alpha < 1.0 and not self.beta - self.gamma >= 0:
+        if self.alpha < 1.0 and not self.beta - self.gamma >= 0:
             raise CaseError("gamma", f"beta - gamma must be >= 0 (else unloading softens), got beta = {self.beta:g}, gamma = {self.gamma:g}")
 
     @property
@@ -101,12 +100,17 @@ class Storey:
     damping: float | None = None
 
     def __post_init__(self):
-        if not _finite("mass", self.mass) > 0:
+        _set(self, mass=finite_number("mass", self.mass), stiffness=finite_number("stiffness", self.stiffness))
+        if not self.mass > 0:
             raise CaseError("mass", f"must be > 0 kg, got {self.mass:g}")
-        if not _finite("stiffness", self.stiffness) > 0:
+        if not self.stiffness > 0:
             raise CaseError("stiffness", f"must be > 0 N/m, got {self.stiffness:g}")
-        if self.damping is not None and not _finite("damping", self.damping) >= 0:
-            raise CaseError("damping", f"must be >= 0 N*s/m, got {self.damping:g}")
+        if not isinstance(self.bouc_wen, BoucWen):
+            raise CaseError("bouc_wen", f"must be a BoucWen, got {described(self.bouc_wen)}")
+        if self.damping is not None:
+            _set(self, damping=finite_number("damping", self.damping))
+            if not self.damping >= 0:
+                raise CaseError("damping", f"must be >= 0 N*s/m, got {self.damping:g}")
 
 
 @dataclass(frozen=True)
@@ -128,12 +132,17 @@ class Building:
     damping_ratio: float = 0.05
 
     def __post_init__(self):
-        object.__setattr__(self, "storeys", tuple(self.storeys))
-        if not self.storeys:
-            raise CaseError("storeys", "a building needs at least one storey")
-        ratio = _finite("damping_ratio", self.damping_ratio)
-        if not 0.0 <= ratio < 1.0:
-            raise CaseError("damping_ratio", f"must lie in [0, 1), got {ratio:g}")
+        storeys = self.storeys
+        if isinstance(storeys, (str, bytes, dict)) or not hasattr(storeys, "__len__"):
+            raise CaseError("storeys", f"must be a tuple of Storey, got {described(storeys)}")
+        check_storey_count("storeys", len(storeys))
+        _set(self, storeys=tuple(storeys))
+        for number, storey in enumerate(self.storeys, start=1):
+            if not isinstance(storey, Storey):
+                raise CaseError(f"storeys.{number}", f"must be a Storey, got {described(storey)}")
+        _set(self, damping_ratio=finite_number("damping_ratio", self.damping_ratio))
+        if not 0.0 <= self.damping_ratio < 1.0:
+            raise CaseError("damping_ratio", f"must lie in [0, 1), got {self.damping_ratio:g}")
 
     @property
     def n_storeys(self) -> int:
@@ -182,6 +191,14 @@ class Building:
             omega_1 = self.mode_shapes()[0][0]
             derived = 2.0 * self.damping_ratio * self.stiffnesses / omega_1
         return np.array([s.damping if s.damping is not None else c for s, c in zip(self.storeys, derived)])
+
+
+def check_storey_count(field: str, count: int) -> None:
+    """:class:`CaseError` naming ``field`` unless 1 <= ``count`` <= :data:`~pounding.defaults.MAX_STOREYS`
+    (the limit lifted by ``POUNDING_LIMITS=off``)."""
+    if count < 1:
+        raise CaseError(field, "a building needs at least one storey")
+    check_limit(field, count, defaults.MAX_STOREYS, "storeys", "lump storeys together")
 
 
 def hysteresis(storey: Storey, drift) -> tuple[np.ndarray, np.ndarray]:

@@ -10,16 +10,22 @@ import numpy as np
 
 from . import defaults
 from . import integrator as kernel
-from .case import Case
-from .errors import CaseError, SimulationError
+from .case import Case, as_case
+from .errors import CaseError, SimulationError, check_limit, described, finite_number, quote, whole_number
 
-__all__ = ["Cancelled", "KernelSystem", "Settings", "failure", "kernel_system"]
+__all__ = ["Cancelled", "KernelSystem", "Settings", "check_records", "check_study", "failure", "kernel_system"]
+
+_LAST_INDEX = 2**63 - 1  # record indices are int64
 
 _FAILURES = {
     kernel.NOT_FINITE: "the response became NaN or infinite",
     kernel.RUNAWAY: "a floor displacement exceeded the runaway limit of {limit:g} m",
     kernel.STEP_UNDERFLOW: "the step size fell below 1e-12 s (the system is too stiff to resolve)",
 }
+
+
+MAX_WORKERS = 1024
+"""Most threads a study may run on (``Settings.workers``)."""
 
 
 class Cancelled(Exception):
@@ -39,7 +45,7 @@ class Settings:
     displacement_limit : float
         A floor displacement beyond this [m] is reported as a runaway response.
     workers : int or None
-        Threads running records in parallel; None uses every core.
+        Threads running records in parallel, 1 to 1024; None uses every core.
     chunk_size : int
         Records per task (progress is reported per chunk).
     """
@@ -50,14 +56,16 @@ class Settings:
     chunk_size: int = 8
 
     def __post_init__(self):
-        if not (isinstance(self.tolerance, float | int) and 1e-12 <= self.tolerance <= 1e-2):
-            raise CaseError("tolerance", f"must lie in [1e-12, 1e-2], got {self.tolerance!r}")
-        if not (isinstance(self.displacement_limit, float | int) and self.displacement_limit > 0):
-            raise CaseError("displacement_limit", f"must be > 0 m, got {self.displacement_limit!r}")
-        if self.workers is not None and not (isinstance(self.workers, int) and self.workers >= 1):
-            raise CaseError("workers", f"must be a whole number >= 1, got {self.workers!r}")
-        if not (isinstance(self.chunk_size, int) and self.chunk_size >= 1):
-            raise CaseError("chunk_size", f"must be a whole number >= 1, got {self.chunk_size!r}")
+        tolerance = finite_number("tolerance", self.tolerance)
+        if not 1e-12 <= tolerance <= 1e-2:
+            raise CaseError("tolerance", f"must lie in [1e-12, 1e-2], got {quote(tolerance)}")
+        limit = finite_number("displacement_limit", self.displacement_limit)
+        if not limit > 0:
+            raise CaseError("displacement_limit", f"must be > 0 m, got {quote(limit)}")
+        workers = None if self.workers is None else whole_number("workers", self.workers, 1, MAX_WORKERS)
+        chunk_size = whole_number("chunk_size", self.chunk_size, 1)
+        for name, value in (("tolerance", tolerance), ("displacement_limit", limit), ("workers", workers), ("chunk_size", chunk_size)):
+            object.__setattr__(self, name, value)
 
     @property
     def n_workers(self) -> int:
@@ -78,6 +86,31 @@ class KernelSystem:
     @property
     def n_floors(self) -> int:
         return self.below.size
+
+
+def check_records(records, seed, first_record) -> tuple[int, int, int]:
+    """The record count, seed and first record as Python ints, checked
+    (numpy integers accepted; the count against MAX_RECORDS)."""
+    records = whole_number("records", records, 1)
+    check_limit("records", records, defaults.MAX_RECORDS, "records", "fewer records suffice for a mean")
+    seed = whole_number("seed", seed, 0)
+    first_record = whole_number("first_record", first_record, 0)
+    if first_record + records > _LAST_INDEX:
+        raise CaseError("first_record", f"first_record + records must be at most 2^63 - 1, got {quote(first_record)}")
+    return records, seed, first_record
+
+
+def check_study(case, settings, progress, cancel) -> tuple[Case, Settings]:
+    """The case (a Case, a preset name or a TOML path) and the settings, checked."""
+    case = as_case(case)
+    settings = Settings() if settings is None else settings
+    if not isinstance(settings, Settings):
+        raise CaseError("settings", f"must be a Settings or None, got {described(settings)}")
+    if progress is not None and not callable(progress):
+        raise CaseError("progress", f"must be a function progress(done, total) or None, got {described(progress)}")
+    if cancel is not None and not callable(getattr(cancel, "is_set", None)):
+        raise CaseError("cancel", f"must be a threading.Event or None, got {described(cancel)}")
+    return case, settings
 
 
 def kernel_system(case: Case, settings: Settings) -> KernelSystem:

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import CaseError
+from .spec import check_point_count
 
 _FILE_FORMAT = 1  # bump when the chunk files' meaning changes: old ones are then ignored
 
@@ -21,7 +22,7 @@ def case_data(case) -> tuple[dict, str]:
     """The parsed case file of ``case`` (preset name, TOML path or dict) and its name."""
     import tomllib
 
-    from ..presets import preset_names, preset_text
+    from ..presets import preset_text
 
     if isinstance(case, Mapping):
         data = copy.deepcopy(dict(case))
@@ -30,13 +31,9 @@ def case_data(case) -> tuple[dict, str]:
         data = tomllib.loads(preset_text(case))
         return data, case
     if isinstance(case, (str, os.PathLike)):
-        path = Path(case)
-        if not path.is_file():
-            raise CaseError("case", f"{str(case)!r} is neither a TOML file nor a preset; presets: {', '.join(preset_names())}")
-        try:
-            return tomllib.loads(path.read_text()), path.stem
-        except tomllib.TOMLDecodeError as error:
-            raise CaseError(str(path), f"not valid TOML: {error}") from None
+        from ..case import read_case_file  # checks the file: size, encoding, TOML
+
+        return read_case_file(case), Path(case).stem
     raise CaseError(
         "case",
         f"give a preset name, a TOML file or the parsed case file as a dict (--vary paths are keys of the file), "
@@ -99,6 +96,7 @@ def sweep_points(data: dict, name: str, vary: list[tuple[str, tuple[float, ...]]
     """Every combination of the varied values, each loaded (and so validated) once here."""
     from ..case import case_from_dict
 
+    check_point_count(vary)  # before any point is built
     paths = [path for path, _ in vary]
     points = []
     for index, values in enumerate(itertools.product(*(values for _, values in vary))):

@@ -4,11 +4,29 @@
 from __future__ import annotations
 
 import math
+import numbers
 from collections.abc import Iterable, Mapping, Sequence
 
-from ..errors import CaseError
+from .. import defaults
+from ..errors import CaseError, check_limit, quote
 
 _SIGNIFICANT_DIGITS = 12  # start:stop:count grids are rounded to this, so 0:0.05:11 gives 0.015, not 0.015000000000000001
+
+
+def _plain(value):
+    """A number as a Python int or float (numpy scalars converted); anything else as it is."""
+    if isinstance(value, bool) or type(value).__name__ == "bool_" or not isinstance(value, numbers.Real):
+        return value
+    return int(value) if isinstance(value, numbers.Integral) else float(value)
+
+
+def _finite(value) -> bool:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return False
+    try:
+        return math.isfinite(value)
+    except OverflowError:  # an int beyond the floats
+        return False
 
 
 def _number(text: str, spec: str) -> float:
@@ -56,6 +74,7 @@ def parse_values(text: str, spec: str | None = None) -> tuple[float, ...]:
             raise CaseError("--vary", f"{spec!r}: count must be a whole number >= 1, got {parts[2].strip()!r}") from None
         if count < 1:
             raise CaseError("--vary", f"{spec!r}: count must be a whole number >= 1, got {count}")
+        check_limit("--vary", count, defaults.MAX_SWEEP_POINTS, f"values in {_short(spec)}", "give a coarser grid")
         if count == 1:
             if start != stop:
                 raise CaseError("--vary", f"{spec!r}: one value from start != stop is ambiguous; give count >= 2")
@@ -66,6 +85,7 @@ def parse_values(text: str, spec: str | None = None) -> tuple[float, ...]:
         items = text.split(",")
         if any(not item.strip() for item in items):
             raise CaseError("--vary", f"{spec!r}: empty value in the list; give a,b,c")
+        check_limit("--vary", len(items), defaults.MAX_SWEEP_POINTS, f"values in {_short(spec)}", "give fewer values")
         values = [_number(item, spec) for item in items]
     seen = set()
     for value in values:
@@ -73,6 +93,18 @@ def parse_values(text: str, spec: str | None = None) -> tuple[float, ...]:
             raise CaseError("--vary", f"{spec!r}: value {value:g} appears twice")
         seen.add(value)
     return tuple(values)
+
+
+def _short(spec: str) -> str:
+    return repr(spec if len(spec) <= 40 else spec[:37] + "...")
+
+
+def check_point_count(vary: list[tuple[str, tuple[float, ...]]]) -> int:
+    """The number of points of a sweep, the product of the counts of values;
+    :class:`CaseError` naming ``--vary`` above :data:`~pounding.defaults.MAX_SWEEP_POINTS`."""
+    count = math.prod(len(values) for _, values in vary)
+    check_limit("--vary", count, defaults.MAX_SWEEP_POINTS, "sweep points (every combination of the values)", "vary fewer values")
+    return count
 
 
 def parse_vary(spec: str) -> tuple[str, tuple[float, ...]]:
@@ -119,13 +151,17 @@ def normalized_vary(vary: Mapping[str, Sequence[float] | str] | Iterable[str] | 
         if isinstance(values, str):
             values = parse_values(values, f"{path}={values}")
         else:
-            values = tuple(values)
+            if isinstance(values, str) or not hasattr(values, "__len__"):
+                raise CaseError("--vary", f"{path!r}: give the values as a list or a spec string, got {type(values).__name__}")
+            check_limit("--vary", len(values), defaults.MAX_SWEEP_POINTS, f"values of {path!r}", "give fewer values")
+            values = tuple(_plain(v) for v in values)
             if not values:
                 raise CaseError("--vary", f"{path!r}: no values")
             for value in values:
-                if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-                    raise CaseError("--vary", f"{path!r}: {value!r} is not a finite number")
+                if not _finite(value):
+                    raise CaseError("--vary", f"{path!r}: {quote(value)} is not a finite number")
             if len(set(values)) != len(values):
                 raise CaseError("--vary", f"{path!r}: a value appears twice")
         out.append((path, values))
+    check_point_count(out)
     return out
