@@ -8,7 +8,7 @@ import math
 import sys
 
 from .. import defaults
-from ..arguments import whole_number
+from ..arguments import record_count, whole_number
 from .engine import CHUNK_RECORDS, SERIAL, TABLE_FORMATS, sweep
 from .spec import normalized_vary
 
@@ -33,7 +33,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
                         help="a key of the case file and its values, in the case's units: start:stop:count or a,b,c "
                         "(repeat for more keys; every combination is run)")
 
-    parser.add_argument("--records", type=whole_number(1), default=defaults.SWEEP_RECORDS,
+    parser.add_argument("--records", type=record_count, default=defaults.SWEEP_RECORDS,
                         help=f"Monte Carlo records per point (default {defaults.SWEEP_RECORDS})")
     parser.add_argument("--seed", type=whole_number(0), default=0, help="seed of the study (default 0)")
     parser.add_argument("-o", "--output", required=True, metavar="DIR",
