@@ -132,7 +132,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     report.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
     report.add_argument("-o", "--output", required=True, help="the HTML file to write")
-    report.add_argument("--records", type=_non_negative_int, default=0,
+    report.add_argument("--records", type=whole_number(0, defaults.MAX_RECORDS, "records"), default=0,
                         help="Monte Carlo records to compare with (default 0: none)")
     report.add_argument("--seed", type=_non_negative_int, default=defaults.REPORT_SEED,
                         help=f"seed of the Monte Carlo study (default {defaults.REPORT_SEED})")
@@ -199,20 +199,19 @@ def _simulate(args) -> int:
     case = load_case(args.case)
     settings = Settings(tolerance=args.tolerance)
     bar = _progress_bar(args.records, sys.stderr.isatty())
-
-    def progress(done: int, total: int) -> None:
-        bar.update(done - bar.n)
-
     study = simulate if args.design_gap is None else partial(design_gap, target_probability=args.design_gap)
     try:
-        result = study(case, records=args.records, seed=args.seed, settings=settings, progress=progress if bar else None)
+        result = study(case, records=args.records, seed=args.seed, settings=settings,
+                       progress=(lambda done, total: bar.update(done - bar.n)) if bar else None)
     finally:
         if bar is not None:
             bar.close()
     try:  # a few ms beside seconds of simulation: the two methods side by side
         closed_form, failure = estimate(case, target_probability=args.design_gap or defaults.TARGET_PROBABILITY), None
-    except ConvergenceError as error:  # the Monte Carlo stands without it
-        closed_form, failure = None, str(error)
+    except (ConvergenceError, ValueError, ArithmeticError) as error:  # CaseError, LinAlgError, overflow: the MC stands
+        closed_form, failure = None, " ".join(str(error).split()) or type(error).__name__  # one line: why not
+    force_text = lambda n: _format_force(n) if abs(n) < 1e12 else f"{n / 1e6:.4g} MN"  # noqa: E731 (not 100 digits)
+    error_text = lambda f, r: f"{100 * (f / r - 1):+.1f} %" if abs(f / r - 1) <= 1e4 else f"{f / r:.3g} times"  # noqa: E731
     if args.design_gap is not None:
         return _print_design_gap(case, result, closed_form, failure, args)
     if args.json:
@@ -235,26 +234,23 @@ def _simulate(args) -> int:
             print(f"  {label:12s}  n/a (Eq. 13-14 hold for the Hertz-type laws only)")
         elif result.force_max_mean > 0.0:
             # The mean's 95 % interval read as a range of the closed form's error.
-            print(f"  {label:12s}  {_format_force(force)}   {100 * (force / result.force_max_mean - 1):+.1f} %"
-                  + (f"   ({100 * (force / high - 1):+.1f} % to {100 * (force / low - 1):+.1f} % against the ends of the Monte Carlo's 95 % CI)"
+            print(f"  {label:12s}  {force_text(force)}   {error_text(force, result.force_max_mean)}"
+                  + (f"   ({error_text(force, high)} to {error_text(force, low)} against the ends of the Monte Carlo's 95 % CI)"
                      if low > 0.0 else ""))
         else:
-            print(f"  {label:12s}  {_format_force(force)}   (no record pounded)")
+            print(f"  {label:12s}  {force_text(force)}   (no record pounded)")
     print(f"  pounding      {100 * closed_form.pounding_probability:.1f} % probability   (simulated: {100 * result.pounding_fraction:.1f} % of records)")
     print(f"  regime        {closed_form.accuracy_regime}: {closed_form.measured_accuracy}")
+    for warning in closed_form.warnings:
+        print(f"  warning: {warning}")
     return 0
 
 
 def _closed_form_dict(closed_form) -> dict:
-    """The closed form's numbers printed beside a Monte Carlo study (SI)."""
-    return {
-        "force_expected": closed_form.force_expected,
-        "paper_force_expected": closed_form.paper.force_expected,
-        "pounding_probability": closed_form.pounding_probability,
-        "impacts_expected": closed_form.impacts_expected,
-        "accuracy_regime": closed_form.accuracy_regime,
-        "measured_accuracy": closed_form.measured_accuracy,
-    }
+    """The closed form's numbers printed beside a Monte Carlo study (SI), with its warnings."""
+    keys = ("force_expected", "pounding_probability", "impacts_expected", "accuracy_regime", "measured_accuracy")
+    return {**{key: getattr(closed_form, key) for key in keys}, "paper_force_expected": closed_form.paper.force_expected,
+            "warnings": list(closed_form.warnings)}
 
 
 def _print_design_gap(case, result, closed_form, failure, args) -> int:
@@ -286,18 +282,20 @@ def _estimate(args) -> int:
         return 0
     paper = result.paper
     rules = result.separation_rules
+    force_text = lambda n: _format_force(n) if abs(n) < 1e12 else f"{n / 1e6:.4g} MN"  # noqa: E731 (not 100 digits)
     print(f"case                        {case.name} ({'stationary' if case.excitation.stationary else 'non-stationary'}, {case.excitation.duration:g} s)")
-    print(f"gap                         {100 * case.contact.gap:.2f} cm")
+    print(f"gap                         {100 * case.contact.gap:{'.2f' if case.contact.gap < 1e4 else '.4g'}} cm")
     linearized = result.response
     print(f"sigma relative displacement {100 * result.sigma_relative_displacement:.3f} cm   "
           f"(linearized {100 * linearized.sigma_relative_displacement:.3f} cm, plus the residual's response)")
     print(f"sigma relative velocity     {result.sigma_relative_velocity:.4f} m/s   "
           f"(linearized {linearized.sigma_relative_velocity:.4f} m/s)")
     print("recommended (gap-aware)")
-    print(f"  expected extreme force    {_format_force(result.force_expected)}")
+    print(f"  expected extreme force    {force_text(result.force_expected)}")
     print(f"  expected peak impact v    {result.relative_velocity_expected:.4f} m/s")
     print(f"  expected impacts          {result.impacts_expected:.2f}   (approaches from below the gap; rebounds not counted)")
-    print(f"  force braking an impact   {_format_force(result.opposing_force)}   (the buildings' own, at the gap)")
+    print("  force braking an impact   " + (f"{force_text(result.opposing_force)}   (the buildings' own, at the gap)"
+                                              if result.impacts_expected > 0.0 else "n/a (no impact expected at this gap)"))
     print(f"  impacts' damping          sigma_V x{result.impacting_velocity_ratio:.3f} before an approach   "
           f"(memory {result.impact_memory:.2f}; a dashpot of {result.impact_dashpot:.4g} N s/m between the floors)")
     print(f"  pounding probability      {100 * result.pounding_probability:.1f} %")
@@ -308,7 +306,7 @@ def _estimate(args) -> int:
     if paper.force_expected is None:
         print("  expected extreme force    n/a (Eq. 13-14 hold for the Hertz-type laws only)")
     else:
-        print(f"  expected extreme force    {_format_force(paper.force_expected)}")
+        print(f"  expected extreme force    {force_text(paper.force_expected)}")
     print(f"  expected extreme velocity {paper.relative_velocity_expected:.4f} m/s   (peak factor {paper.peak_factor:.3f})")
     print(f"  crossing rate (Eq. 24)    {paper.crossing_rate:.4f} 1/s, effective duration {paper.duration_effective:.2f} s")
     if paper.michaelov_n1 is not None:

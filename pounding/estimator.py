@@ -30,7 +30,7 @@ from .gap_aware import (
 )
 from .pair import LinearizedPair
 from .paper_method import PaperEstimate, check_michaelov_n1, paper_estimate
-from .regimes import assess
+from .regimes import assess, extreme_warnings
 from .response import ContactResponse
 from .separation import separation_rules
 
@@ -72,6 +72,8 @@ class Estimate:
     opposing_force : float
         The buildings' mean force braking the approach at the gap,
         m (sigma_V / sigma_X)^2 gap [N]; it lowers the peak force of slow impacts.
+        0 where no impact is expected (``impacts_expected`` 0: the gap lies some
+        40 sigma_X or more away), since nothing is braked there.
     impacting_velocity_ratio : float
         sigma_V of the motion between impacts over the free motion's [-]: what
         the impacts before an approach leave it (:mod:`pounding.impact_damping`);
@@ -95,7 +97,9 @@ class Estimate:
     warnings : tuple of str
         Where the case lies outside the range in which the estimate was found
         within 10 % of Monte Carlo: what is wrong, how large the error can be,
-        what to do (docs/accuracy.md).
+        what to do (docs/accuracy.md); first those of extreme inputs (records
+        cut below the motion's frequencies, a soft contact, a force no building
+        takes: :func:`~pounding.regimes.extreme_warnings`).
     crossings : Crossings
         The free motion's sigma history, from which :meth:`gap_curve` counts other gaps.
     accuracy_regime : str
@@ -217,10 +221,15 @@ def estimate(
     required_gap = gap_for_probability(crossings, target_probability)
     impacting = crossings.damped(gap)
     (velocity,) = expected_maximum(crossings, gap, lambda v: v, 1.0, impacting)
-    assessment = assess(pair, contact.gap, response.sigma_relative_displacement, required_gap, target_probability)
+    force = float(expected_force_maximum(crossings, gap, contact, case.reduced_mass, impacting)[0])
+    paper = paper_estimate(pair, paper_variance, michaelov_n1)
+    sigma_x = response.sigma_relative_displacement
+    assessment = assess(pair, contact.gap, sigma_x, required_gap, target_probability)
+    # Where nothing is expected to pound (a gap ~40 sigma_X or more), no impact is braked: its f0 would be m w^2 d.
+    opposing = float(opposing_forces(crossings, gap, case.reduced_mass)[0]) if impacts > 0.0 else 0.0
     return Estimate(
         case=case,
-        force_expected=float(expected_force_maximum(crossings, gap, contact, case.reduced_mass, impacting)[0]),
+        force_expected=force,
         relative_velocity_expected=float(velocity),
         sigma_relative_displacement=response.sigma_relative_displacement,
         sigma_relative_velocity=response.sigma_relative_velocity,
@@ -230,14 +239,14 @@ def estimate(
         target_probability=float(target_probability),
         upcrossing_rate=response.upcrossing_rate,
         peak_force_ratio=peak_force_ratio(contact.model, contact.restitution),
-        opposing_force=float(opposing_forces(crossings, gap, case.reduced_mass)[0]),
+        opposing_force=opposing,
         impacting_velocity_ratio=float(impacting.ratio_velocity[0]),
         impact_memory=float(impacting.memory[0]),
         impact_dashpot=float(impacting.dashpot[0]),
         separation_rules=separation_rules(pair),
-        paper=paper_estimate(pair, paper_variance, michaelov_n1),
+        paper=paper,
         response=pair.stationary_response,
-        warnings=assessment.warnings,
+        warnings=extreme_warnings(pair, force, paper.force_expected, float(velocity), sigma_x) + assessment.warnings,
         crossings=crossings,
         accuracy_regime=assessment.regime,
         measured_accuracy=assessment.measured_accuracy,

@@ -19,10 +19,14 @@ from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
 
+from .contact import undamped_peak_force
 from .excitation import CloughPenzien
 
 __all__ = [
+    "CUTOFF_SHARE_LIMIT",
+    "FORCE_WEIGHT_LIMIT",
     "MODERATE_GAP",
+    "SOFT_CONTACT_LIMIT",
     "MOVING_TOGETHER",
     "NARROW_BAND_LIMIT",
     "REGIMES",
@@ -31,6 +35,7 @@ __all__ = [
     "accuracy_data",
     "accuracy_regime",
     "assess",
+    "extreme_warnings",
 ]
 
 MODERATE_GAP = 0.5
@@ -47,6 +52,20 @@ MOVING_TOGETHER = 0.9
 Fitted: set on the first random draw, where every unsafe pair lay at 0.92 or above; held on the other two."""
 
 REGIMES = ("frequent", "moderate gap", "narrow band", "large residual", "rare")
+
+# --- extreme inputs (docs/accuracy.md, "Extreme inputs") ---------------------------------------------------
+CUTOFF_SHARE_LIMIT = 0.01
+"""Share of the linearized sigma_V^2 above the records' cutoff beyond which an estimate warns [-] (sigma_X^2
+loses less): the estimate is cut there too, but that cut was measured -19 % to +7,900 % off (docs/accuracy.md)."""
+SOFT_CONTACT_LIMIT = 1.0
+"""Penetration of the undamped impact at the expected largest approach speed, in sigma_X, beyond which the
+contact counts as soft [-]: the estimate takes an impact as a short shock. The measured cases reach 0.56; on
+the Section 5 pair with softer contacts the estimate was +34 % to +630 % off beyond 1 (docs/accuracy.md)."""
+FORCE_WEIGHT_LIMIT = 1000.0
+"""Force over the lighter colliding floor's weight beyond which an estimate warns [-]: the measured cases and
+the presets reach 24, and no building takes a thousand times a floor's weight."""
+STANDARD_GRAVITY = 9.80665
+"""[m/s^2]"""
 
 
 def accuracy_regime(gap: float, sigma_x: float, residual_share: float, bandwidth: float) -> str:
@@ -164,3 +183,29 @@ def _required_gap_warning(pair, spectrum: str, yielding: bool, target_probabilit
     percent = f"{100 * target_probability:g}"
     return (f"The gap for {percent} % lies where pounding is rare{cause}: up to {100 * measured['max']:.0f} % of records pounded "
             f"at such gaps for 95 %. Size it with `pounding simulate --design-gap {target_probability:g}`.")
+
+
+def extreme_warnings(pair, force: float, paper_force: float | None, velocity: float, sigma_x: float) -> tuple[str, ...]:
+    """The warnings of an estimate on a :class:`~pounding.pair.LinearizedPair` whose inputs lie beyond what it
+    was measured on: records cut below the motion's own frequencies, a contact too soft for short impacts, a
+    force no building takes. ``force``, ``paper_force`` [N], ``velocity`` the expected largest approach
+    speed [m/s], ``sigma_x`` [m] with the residual's response."""
+    case, warnings = pair.case, []
+    share = float(pair.cutoff_shares[5])  # of the linearized sigma_V^2, which loses more than sigma_X^2 (w^2 G_X)
+    if share > CUTOFF_SHARE_LIMIT:
+        warnings.append(f"The records stop at {case.excitation.cutoff_frequency:.3g} rad/s, removing {100 * share:.0f} % of "
+                        "sigma_V^2. Cut there too, it was -19 % to +13 % off, +43 % to +7,900 % far below the "
+                        f"buildings' frequencies. {_CHECK}")
+    contact = case.contact
+    if velocity > 0.0:
+        impact = float(undamped_peak_force(contact, velocity, case.reduced_mass))
+        penetration = (impact / contact.stiffness) ** (1.0 / contact.stiffness_exponent) / sigma_x
+        if penetration > SOFT_CONTACT_LIMIT:
+            warnings.append(f"The contact is soft: the largest impact would penetrate {penetration:.2g} sigma_X, no short "
+                            f"shock as assumed; measured +34 % to +630 % off beyond 1, more if softer. {_CHECK}")
+    weight = min(case.contact_masses) * STANDARD_GRAVITY
+    largest = max(force, paper_force or 0.0)
+    if largest > FORCE_WEIGHT_LIMIT * weight:
+        warnings.append(f"The force is {largest / weight:.2g} times the lighter colliding floor's weight: no building takes "
+                        "that, and the model knows no failure. Check the contact stiffness and G0.")
+    return tuple(warnings)

@@ -30,6 +30,7 @@ from .linearization import LinearizedBuilding, StateSpace
 __all__ = [
     "OUTPUTS",
     "ContactResponse",
+    "band_covariance",
     "FloorStatistics",
     "contact_output_matrix",
     "floor_response_and_receptance",
@@ -244,6 +245,18 @@ def _contact_frf(case, linearized, omega) -> np.ndarray:
     h2 = frequency_response(linearized[1], omega)[..., f2]
     iw = 1j * np.asarray(omega, dtype=float)
     return np.stack([h1, h2, iw * h1, iw * h2, iw**2 * h1, iw**2 * h2], axis=-1)
+
+
+def band_covariance(case, linearized, low: float, high: float) -> np.ndarray:
+    """Covariance of :data:`OUTPUTS` carried by the ground motion's frequencies from ``low`` to ``high``
+    [rad/s], 2 int Re(H_i conj(H_j)) S_g d omega by the trapezoid rule on the points of
+    :func:`spectral_grid` between them and the two ends, shape (6, 6) (SI): the part of the stationary
+    covariance a band of the spectrum makes (the records' cutoff, :class:`~pounding.pair.LinearizedPair`)."""
+    grid = spectral_grid()
+    omega = np.unique(np.concatenate([[low, high], grid[(grid > low) & (grid < high)]]))
+    frf = _contact_frf(case, linearized, omega)
+    density = case.excitation.spectrum.psd(omega) * trapezoid_weights(omega)
+    return 2.0 * np.real(np.einsum("k,ki,kj->ij", density, frf, frf.conj()))
 
 
 def response_frequency(case, linearized, model: StateSpace, rtol: float = 1e-10) -> ContactResponse:

@@ -58,9 +58,18 @@ class _StoreyMoments:
         substitution = np.zeros((count, model.size))
         substitution[:, :N] = A[index, None] * self.drift_rows
         matrix = model.matrix + model.matrix[:, self.z_states] @ substitution
-        covariance = lyapunov_covariance(matrix[np.ix_(keep, keep)], noise[np.ix_(keep, keep)])
-        velocity, z = velocity[:, keep], substitution[:, keep]
-        self.elastic = _quadratic_forms(np.concatenate([velocity, z, velocity]), covariance, np.concatenate([velocity, z, z]))
+        self.start_k_e = np.zeros(count)
+        try:
+            covariance = lyapunov_covariance(matrix[np.ix_(keep, keep)], noise[np.ix_(keep, keep)])
+            velocity, z = velocity[:, keep], substitution[:, keep]
+            self.start = _quadratic_forms(np.concatenate([velocity, z, velocity]), covariance, np.concatenate([velocity, z, z]))
+        except np.linalg.LinAlgError:
+            self.start = np.full(3 * count, np.nan)
+        if not np.all(np.isfinite(self.start)):
+            # Undamped storeys (damping_ratio = 0): the elastic start has no stationary response, but the
+            # yielding storeys' hysteresis damps the linearized building. Start from k_e = -sqrt(k / m) instead.
+            self.start_k_e = -np.sqrt(building.stiffnesses / building.masses)[index]
+            self.start = self(A[index], self.start_k_e)
 
     def __call__(self, c_e: np.ndarray, k_e: np.ndarray) -> np.ndarray:
         """(Var udot, Var z, Cov(udot, z)) of the yielding storeys, concatenated;
@@ -141,13 +150,17 @@ def linearize(
     ConvergenceError
         If the iteration does not converge or the linear system loses
         stability; the message names the building, the storey, and the last
-        iterate.
+        iterate. Also for an undamped building without a yielding storey,
+        which has no stationary response.
     """
     if not 0.0 < relaxation <= 1.0:
         raise ValueError(f"relaxation must lie in (0, 1], got {relaxation!r}")
     storeys = building.storeys
     yielding = np.array([s.bouc_wen.alpha < 1.0 for s in storeys])
     elastic = LinearizedBuilding.elastic(building)
+    if spectrum.G0 > 0.0 and not yielding.any() and not np.any(building.storey_damping() > 0.0):
+        raise ConvergenceError(f"{label} has no damping and no yielding storey: an undamped elastic building has no "
+                               "stationary response to random ground motion (give it a damping_ratio > 0)")
     if spectrum.G0 == 0.0 or not yielding.any():
         # No motion, or no hysteresis: the elastic system is exact.
         return elastic
@@ -190,8 +203,8 @@ def linearize(
             out[s], out[count + s] = c_e, k_e
         return out, sigma, worst, worst_storey
 
-    coefficients = np.concatenate([[law.A for law in laws], np.zeros(count)])
-    target, sigma, worst, worst_storey = targets(moments.elastic, 1, coefficients)
+    coefficients = np.concatenate([[law.A for law in laws], moments.start_k_e])
+    target, sigma, worst, worst_storey = targets(moments.start, 1, coefficients)
     # Iterate on scaled coefficients (c_e / A, k_e / |first k_e|), so that the
     # mixing's least squares weighs them alike.
     scale = np.concatenate([coefficients[:count], np.maximum(np.abs(target[count:]), 1e-300)])
@@ -236,6 +249,26 @@ def _fail(label: str, reason: str, storey: int, coefficients, count: int):
     raise error
 
 
+FREQUENCY_RANGE = (1e-8, 1e8)
+"""[rad/s] Storey frequencies sqrt(k / m) and ground-filter frequencies the closed form takes (periods of 0.06 us
+to 20 years). Within it the closed form answers or says why not (a runaway, an unstable linearization); far beyond
+it double precision cannot hold the buildings and the ground in one system (a mass of 1e300: 1e-149 rad/s)."""
+
+
+def check_frequencies(case) -> None:
+    """Raise :class:`ConvergenceError` naming the key where a storey frequency sqrt(k / m) or the ground
+    filter's omega_g (omega_f) lies outside :data:`FREQUENCY_RANGE`: the closed form cannot answer there."""
+    low, high = FREQUENCY_RANGE
+    found = [(f"buildings.{b}.storeys.{s}: sqrt(stiffness / mass)", math.sqrt(storey.stiffness / storey.mass))
+             for b, building in enumerate(case.buildings, start=1) for s, storey in enumerate(building.storeys, start=1)]
+    spectrum = case.excitation.spectrum
+    found += [(f"excitation.{key}", getattr(spectrum, key)) for key in ("omega_g", "omega_f") if hasattr(spectrum, key)]
+    for where, frequency in found:
+        if not low <= frequency <= high:
+            raise ConvergenceError(f"{where} = {frequency:.3g} rad/s lies outside {low:g} to {high:g} rad/s, "
+                                   "where the closed form's solutions hold")
+
+
 def linearize_pair(case, **options) -> tuple[LinearizedBuilding, LinearizedBuilding]:
     """Linearize both buildings of a case under its stationary spectrum.
 
@@ -249,6 +282,7 @@ def linearize_pair(case, **options) -> tuple[LinearizedBuilding, LinearizedBuild
     **options
         ``tolerance``, ``max_iterations``, ``relaxation`` of :func:`linearize`.
     """
+    check_frequencies(case)
     spectrum = case.excitation.spectrum
     first, second = (
         linearize(building, spectrum, label=f"building {number}", **options)

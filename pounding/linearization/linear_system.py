@@ -9,6 +9,7 @@ from functools import cached_property
 
 import numpy as np
 
+from ..errors import ConvergenceError
 from ..excitation import KanaiTajimi
 from ..structures import Building
 from .ground import ground_filter
@@ -146,7 +147,13 @@ class StateSpace:
 
     @cached_property
     def _stationary_covariance(self) -> np.ndarray:
-        covariance = lyapunov_covariance(self.matrix, self.noise_covariance)
+        try:
+            covariance = lyapunov_covariance(self.matrix, self.noise_covariance)
+        except np.linalg.LinAlgError:
+            covariance = np.full(self.matrix.shape, np.nan)
+        if not (np.all(np.isfinite(covariance)) and np.all(np.diagonal(covariance) >= 0.0)):
+            raise ConvergenceError("the linearized buildings have no stationary response (the Lyapunov equation is "
+                                   "singular: a mode without damping, or magnitudes beyond double precision)")
         covariance.setflags(write=False)
         return covariance
 
@@ -220,6 +227,9 @@ def state_space(buildings, spectrum: KanaiTajimi) -> StateSpace:
         hysteretics.append(z_rows)
         offset += linearized.n_states
     matrix += coupling
+    if not np.all(np.isfinite(matrix)):
+        raise ConvergenceError("the linearized buildings' equations overflow double precision: check the masses, "
+                               "stiffnesses and damping")
     return StateSpace(
         matrix,
         noise_input,
