@@ -7,9 +7,11 @@ from __future__ import annotations
 import os
 
 __all__ = [
+    "ACCURACY_SEED",
     "CASE",
     "LIMITS_VARIABLE",
     "MAX_CASE_FILE_BYTES",
+    "MAX_GAPS",
     "MAX_CHUNK_SAMPLES",
     "MAX_HISTORY_VALUES",
     "MAX_RECORDS",
@@ -87,3 +89,6 @@ def limits_enabled() -> bool:
     return os.environ.get(LIMITS_VARIABLE, "").strip().lower() != "off"
 ACCURACY_SEED = 11
 """Seed of the Monte Carlo studies of the accuracy grid (``pounding validate --grid``) and of the accuracy data."""
+MAX_GAPS = 100_000
+"""Gaps of one force-versus-gap curve (``Estimate.gap_curve``, ``force_versus_gap``): 100 gaps take about 4 ms, so
+the limit about 4 s."""

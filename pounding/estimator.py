@@ -18,9 +18,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import defaults
-from .case import Case
+from .case import Case, as_case
 from .contact import peak_force_ratio
-from .errors import CaseError, check_probability
+from .errors import CaseError, check_limit, check_probability
 from .gap_aware import (
     Crossings,
     expected_force_maximum,
@@ -181,11 +181,8 @@ class Estimate:
 
 
 def _pair(case) -> LinearizedPair:
-    if isinstance(case, LinearizedPair):
-        return case
-    if isinstance(case, Case):
-        return LinearizedPair.of(case)
-    raise CaseError("case", f"must be a Case (from load_case) or a LinearizedPair, got {type(case).__name__}")
+    """A pair as it is; a Case, a preset name or a case file's path linearized (:func:`~pounding.case.as_case`)."""
+    return case if isinstance(case, LinearizedPair) else LinearizedPair.of(as_case(case))
 
 
 def estimate(
@@ -198,7 +195,7 @@ def estimate(
 
     Parameters
     ----------
-    case : Case or LinearizedPair
+    case : Case, LinearizedPair, preset name or path of a case file
         A pair reuses its linearization and response (they do not depend on the gap).
     target_probability : float
         Probability of no pounding the ``required_gap`` must give [-].
@@ -271,6 +268,7 @@ def gap_curve(case: Case, crossings: Crossings, gaps, paper_force: float | None)
     gaps = np.asarray(gaps, dtype=float).ravel()
     if gaps.size == 0 or np.any(gaps < 0) or not np.all(np.isfinite(gaps)):
         raise CaseError("gaps", "must be finite numbers >= 0 m")
+    check_limit("gaps", gaps.size, defaults.MAX_GAPS, "gaps", "estimate fewer gaps at a time")
     impacts = crossings.intensity(gaps, np.zeros(1))[:, 0]
     # A curve for plots and design charts: 81 points in v^p (1e-4) keep 100 gaps within 10 ms.
     force = expected_force_maximum(crossings, gaps, case.contact, case.reduced_mass, crossings.damped(gaps), 81)

@@ -29,11 +29,18 @@ __all__ = [
 ]
 
 
-def _positive(instance, field: str) -> None:
-    """Check ``instance.field`` is a finite number > 0 and store it as a float."""
+FILTER_FREQUENCY_MAX = 1e4
+"""Largest filter frequency omega_g, omega_f [rad/s] (1.6 kHz: far above any ground motion)."""
+FILTER_DAMPING_MAX = 100.0
+"""Largest filter damping ratio xi_g, xi_f [-] (beyond, the filter is flat over every building's frequencies)."""
+
+
+def _positive(instance, field: str, maximum: float = math.inf) -> None:
+    """Check ``instance.field`` is a finite number > 0 (and <= ``maximum``) and store it as a float."""
     value = finite_number(field, getattr(instance, field))
-    if not value > 0:
-        raise CaseError(field, f"must be a finite number > 0, got {quote(value)}")
+    if not 0 < value <= maximum:
+        bound = f"in (0, {maximum:g}]" if math.isfinite(maximum) else "a finite number > 0"
+        raise CaseError(field, f"must be {bound}, got {quote(value)}")
     object.__setattr__(instance, field, value)
 
 
@@ -66,8 +73,8 @@ class KanaiTajimi:
 
     def __post_init__(self):
         _non_negative(self, "G0")
-        _positive(self, "omega_g")
-        _positive(self, "xi_g")
+        _positive(self, "omega_g", FILTER_FREQUENCY_MAX)
+        _positive(self, "xi_g", FILTER_DAMPING_MAX)
 
     def filter_response(self, omega):
         """|H_g(omega)|^2 of the soil filter (the fraction in Eq. 7) [-]."""
@@ -103,8 +110,8 @@ class CloughPenzien(KanaiTajimi):
 
     def __post_init__(self):
         super().__post_init__()
-        _positive(self, "omega_f")
-        _positive(self, "xi_f")
+        _positive(self, "omega_f", FILTER_FREQUENCY_MAX)
+        _positive(self, "xi_f", FILTER_DAMPING_MAX)
 
     def psd(self, omega):
         w2 = np.square(omega)

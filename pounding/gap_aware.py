@@ -33,6 +33,7 @@ import numpy as np
 
 from .contact import Contact, impact_peak_force
 from .crossing_kernels import U_MAX, approach_intensity, merged_instants, required_gap
+from .errors import ConvergenceError
 from .impact_damping import DampedMotion, ImpactDamping
 from .peaks import VANMARCKE_DOUBLE_BARRIER
 
@@ -82,6 +83,8 @@ class Crossings:
         ) ** 2
         # At the onset the buildings are at rest: their variances are rounding noise, whose ratio is no rate.
         alive = (variance_x > 1e-12 * variance_x.max()) & (variance_v > 1e-12 * variance_v.max())
+        if not np.any(alive & (weights > 0.0)):
+            raise ConvergenceError("the relative motion does not build up over the record: there is nothing to count")
         damping = pair.impact_damping
         x, v, w = merged_instants(
             *(np.ascontiguousarray(a, dtype=float) for a in (np.sqrt(variance_x[alive]), np.sqrt(variance_v[alive]), weights[alive])),

@@ -206,7 +206,7 @@ class LinearizedPair:
     @cached_property
     def relative_displacement_moments(self) -> np.ndarray:
         """One-sided spectral moments lambda_0, lambda_1, lambda_2 of X (:attr:`relative_displacement_psd`)."""
-        return spectral_moments(self.relative_displacement_psd)
+        return _resolved(spectral_moments(self.relative_displacement_psd), "the relative displacement")
 
     @cached_property
     def bandwidth(self) -> float:
@@ -218,7 +218,8 @@ class LinearizedPair:
     def floor_bandwidths(self) -> np.ndarray:
         """Vanmarcke's q of each contact floor's displacement x1, x2 [-]."""
         ground = self._records_psd
-        return np.array([vanmarcke_bandwidth(*spectral_moments(2.0 * np.abs(h) ** 2 * ground)) for h, _ in self.contact_floor_frfs])
+        return np.array([vanmarcke_bandwidth(*_resolved(spectral_moments(2.0 * np.abs(h) ** 2 * ground), f"floor {b}'s displacement"))
+                         for b, (h, _) in enumerate(self.contact_floor_frfs, start=1)])
 
     def psd_relative_velocity(self, omega) -> np.ndarray:
         """Two-sided PSD of V = v1 - v2 at the contact floors, w^2 |H1 - H2|^2 S_g(w)
@@ -330,3 +331,11 @@ class LinearizedPair:
                 raise ConvergenceError(
                     f"building {number}'s floors move {sigma:.3g} m (sigma): their peaks, about 3 sigma, pass the {limit:g} m "
                     "at which a time history runs away, so there is no estimate; lower G0 or check the storeys")
+
+
+def _resolved(moments: np.ndarray, what: str) -> np.ndarray:
+    """``moments`` (lambda_0, lambda_1, lambda_2), unless lambda_0 or lambda_2 rounds to 0 or overflows."""
+    if not (np.all(np.isfinite(moments)) and moments[0] * moments[2] > 0.0):
+        raise ConvergenceError(f"the spectrum of {what} underflows or overflows in double precision: "
+                               "the ground motion's G0 is out of reach of the method")
+    return moments

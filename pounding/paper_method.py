@@ -13,7 +13,7 @@ import numpy as np
 
 from . import defaults
 from .contact import undamped_peak_force
-from .errors import CaseError
+from .errors import CaseError, finite_number
 from .peaks import davenport_peak_factor, envelope_variance, equivalent_stationary
 
 __all__ = ["PAPER_VARIANCE_METHODS", "PaperEstimate", "check_michaelov_n1", "paper_estimate"]
@@ -63,7 +63,7 @@ class PaperEstimate:
 def check_michaelov_n1(n1) -> None:
     """Raise :class:`CaseError` unless n1 lies in :data:`~pounding.defaults.MICHAELOV_N1_RANGE`."""
     low, high = defaults.MICHAELOV_N1_RANGE
-    if isinstance(n1, bool) or not isinstance(n1, (int, float)) or not low <= n1 <= high:
+    if not low <= finite_number("michaelov_n1", n1) <= high:
         raise CaseError("michaelov_n1", f"must lie in [{low:g}, {high:g}], got {n1!r}")
 
 

@@ -44,8 +44,10 @@ def test_a_pair_reused_gives_the_estimate_of_its_case():
     assert np.array_equal(first.crossings.sigma_x, second.crossings.sigma_x)
 
 
-def test_estimate_names_a_wrong_argument():
+def test_estimate_takes_a_preset_name_and_names_a_wrong_argument():
     from pounding.errors import CaseError
 
-    with pytest.raises(CaseError, match="case: must be a Case"):
-        estimate("section5-T2-0.4")
+    assert estimate("section5-T2-0.4").force_expected == estimate(load_case("section5-T2-0.4")).force_expected
+    for wrong in (5, None, {"contact": {}}):
+        with pytest.raises(CaseError, match="case: must be a Case"):
+            estimate(wrong)

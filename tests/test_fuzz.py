@@ -1,0 +1,187 @@
+"""Hostile input, by Hypothesis: random mutations of the presets' case files (wrong types, extreme
+magnitudes, missing and extra keys, other encodings, bytes) and of the command line's arguments. Every run
+ends in exit 0 with finite numbers, or in exit 1 or 2 with one line that names what is wrong; never a
+traceback, and none takes more than a few seconds."""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import math
+import tomllib
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from pounding.cli import main
+from pounding.presets import preset_text
+
+PRESETS = ("section5-T2-0.4", "section5-T2-0.8-nonstationary", "section6-T2-0.4", "section6-T2-0.6-nonstationary-G0x4pi2")
+FUZZ = settings(max_examples=300, deadline=5000, suppress_health_check=[HealthCheck.too_slow], derandomize=True)
+
+
+def _leaves(data, path=()):
+    """Every (path, value) of a parsed case, paths into tables and arrays of tables."""
+    if isinstance(data, dict):
+        for key, value in data.items():
+            yield from _leaves(value, (*path, key))
+    elif isinstance(data, list) and data and all(isinstance(item, dict) for item in data):
+        for index, item in enumerate(data):
+            yield from _leaves(item, (*path, index))
+    else:
+        yield path, data
+
+
+def _value(value) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return "nan" if math.isnan(value) else ("inf" if value == math.inf else "-inf" if value == -math.inf else repr(value))
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, str):
+        return json.dumps(value)
+    if isinstance(value, list):
+        return "[" + ", ".join(_value(v) for v in value) + "]"
+    if isinstance(value, dict):
+        return "{ " + ", ".join(f"{json.dumps(k)} = {_value(v)}" for k, v in value.items()) + " }"
+    raise TypeError(value)
+
+
+def _toml(data: dict, prefix: str = "") -> str:
+    """A minimal TOML writer for the case schema (tables, arrays of tables, inline values)."""
+    lines, tables = [], []
+    for key, value in data.items():
+        name = json.dumps(key)
+        if isinstance(value, dict) and not prefix.endswith("storeys"):
+            tables.append((f"[{prefix}{name}]", value, f"{prefix}{name}."))
+        elif isinstance(value, list) and value and all(isinstance(item, dict) for item in value):
+            tables += [(f"[[{prefix}{name}]]", item, f"{prefix}{name}.") for item in value]
+        else:
+            lines.append(f"{name} = {_value(value)}")
+    out = "\n".join(lines) + "\n"
+    for header, table, inner in tables:
+        out += f"\n{header}\n" + _toml(table, inner)
+    return out
+
+
+def _set(data, path, value=None, delete=False):
+    node = data
+    for key in path[:-1]:
+        node = node[key]
+    if delete:
+        del node[path[-1]]
+    else:
+        node[path[-1]] = value
+
+
+BAD_VALUES = st.one_of(
+    st.integers(-10**15, 10**15),
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.sampled_from([0, -1, 1e-300, 1e300, -1e300, 0.0, 1e-9, 1e9]),
+    st.text(max_size=6),
+    st.booleans(),
+    st.lists(st.integers(-3, 3), max_size=3),
+    st.just({}),
+)
+
+
+@st.composite
+def mutated_case(draw):
+    data = tomllib.loads(preset_text(draw(st.sampled_from(PRESETS))))
+    leaves = [path for path, _ in _leaves(data) if path[0] not in ("name", "description")]
+    path = draw(st.sampled_from(leaves))
+    kind = draw(st.sampled_from(["value", "scale", "delete", "extra", "table"]))
+    original = dict(_leaves(data))[path]
+    if kind == "value":
+        _set(data, path, draw(BAD_VALUES))
+    elif kind == "scale" and isinstance(original, (int, float)) and not isinstance(original, bool):
+        _set(data, path, original * 10.0 ** draw(st.integers(-300, 300)))
+    elif kind == "delete":
+        _set(data, path, delete=True)
+    elif kind == "extra":
+        _set(data, (*path[:-1], draw(st.sampled_from(["extra", "Gap", "mass2", "levels "]))), 1.0)
+    else:
+        _set(data, path[:1], draw(BAD_VALUES))  # a whole table replaced by a value
+    text = _toml(data)
+    encoding = draw(st.sampled_from(["utf-8", "utf-8", "utf-8", "utf-16", "latin-1", "bytes"]))
+    if encoding == "bytes":
+        return draw(st.binary(min_size=1, max_size=64))
+    return text.encode(encoding, errors="replace")
+
+
+def _run(argv: list[str]) -> tuple[int, str, str]:
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        try:
+            code = main(argv)
+        except SystemExit as stop:  # argparse
+            code = stop.code
+    return code, out.getvalue(), err.getvalue()
+
+
+def _finite(value) -> bool:
+    if isinstance(value, dict):
+        return all(_finite(v) for v in value.values())
+    if isinstance(value, list):
+        return all(_finite(v) for v in value)
+    return not isinstance(value, float) or math.isfinite(value)
+
+
+def _check(code: int, out: str, err: str) -> None:
+    assert "Traceback" not in err
+    if code == 0:
+        data = json.loads(out)
+        assert _finite(data)
+        assert all(len(w) <= 200 for w in data.get("warnings", []))
+    else:
+        assert code in (1, 2), (code, err)
+        lines = err.strip().splitlines()
+        assert len(lines) == 1 and len(lines[0]) <= 400, err
+        assert ": error: " in lines[0] or ": failed: " in lines[0], err
+
+
+@FUZZ
+@given(content=mutated_case())
+def test_a_mutated_case_file_is_estimated_or_refused_in_one_line(tmp_path_factory, content):
+    path = tmp_path_factory.mktemp("fuzz") / "case.toml"
+    path.write_bytes(content)
+    _check(*_run(["estimate", str(path), "--json"]))
+
+
+NUMBER_TEXT = st.one_of(
+    st.integers(0, 4).map(str),
+    st.floats(0.0, 1.0).map(repr),
+    st.sampled_from(["nan", "inf", "-inf", "-1", "0", "1e400", "1e-400", "", "x", "1,5", "0x10", "2.5", "100000000000"]),
+    st.integers(-10**12, 10**12).map(str),
+    st.floats(allow_nan=True, allow_infinity=True).map(repr),
+)
+
+
+@settings(max_examples=120, deadline=5000, suppress_health_check=[HealthCheck.too_slow], derandomize=True)
+@given(
+    option=st.sampled_from(["--records", "--seed", "--tolerance", "--design-gap", "--target-probability", "--michaelov-n1"]),
+    value=NUMBER_TEXT,
+)
+def test_a_mutated_command_line_runs_or_is_refused_in_one_line(option, value):
+    if option in ("--target-probability", "--michaelov-n1"):
+        argv = ["estimate", "section5-T2-0.4-nonstationary", "--json", option, value]
+    else:
+        records = [] if option == "--records" else ["--records", "2"]
+        argv = ["simulate", "section5-T2-0.4", "--json", *records, option, value]
+        if option == "--records":
+            try:
+                if 3 < float(value) < 1e6:
+                    return  # a valid, long study: not what this test is about
+            except ValueError:
+                pass
+    code, out, err = _run(argv)
+    if code == 0:
+        assert _finite(json.loads(out))
+    else:
+        assert code in (1, 2) and "Traceback" not in err
+        lines = err.strip().splitlines()
+        assert len(lines) == 1, err
+        assert option in lines[0] or code == 1, err
