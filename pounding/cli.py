@@ -15,6 +15,7 @@ from functools import partial
 from . import defaults
 from .cli_parser import EXIT_BAD_INPUT, parser
 
+
 def _progress_bar(total: int, enabled: bool):
     """A tqdm bar on stderr when it is a terminal; otherwise nothing."""
     if not enabled:

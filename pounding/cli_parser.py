@@ -9,7 +9,13 @@ import argparse
 from functools import lru_cache
 
 from . import defaults
-from .arguments import bounded_number, probability, record_count, tolerance, whole_number
+from .arguments import (
+    bounded_number,
+    probability,
+    record_count,
+    tolerance,
+    whole_number,
+)
 
 __all__ = ["EXIT_BAD_INPUT", "parser"]
 
@@ -71,7 +77,7 @@ def parser() -> argparse.ArgumentParser:
     )
     simulate.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
     simulate.add_argument("--records", type=record_count, default=defaults.RECORDS, help=f"number of records (default {defaults.RECORDS})")
-    simulate.add_argument("--seed", type=_non_negative_int, default=0, help="seed of the study (default 0)")
+    simulate.add_argument("--seed", type=_non_negative_int, default=defaults.SEED, help=f"seed of the study (default {defaults.SEED})")
     simulate.add_argument("--tolerance", type=tolerance, default=defaults.INTEGRATOR_TOLERANCE,
                           help=f"relative tolerance of the integrator (default {defaults.INTEGRATOR_TOLERANCE:g})")
     simulate.add_argument("--json", action="store_true", help="print one JSON object (SI units) instead of a table")
@@ -91,7 +97,7 @@ def parser() -> argparse.ArgumentParser:
     estimate.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
     estimate.add_argument("--target-probability", type=probability, default=defaults.TARGET_PROBABILITY,
                           help=f"target probability of no pounding during the record, in (0, 1) (default {defaults.TARGET_PROBABILITY:g})")
-    estimate.add_argument("--paper-variance", choices=("eq28", "exact"), default="eq28",
+    estimate.add_argument("--paper-variance", choices=("eq28", "exact"), default=defaults.PAPER_VARIANCE,
                           help="the paper's method under an envelope: sigma_V(t) by Eq. 28 (default, as published) "
                           "or by the exact time-varying covariance")
     estimate.add_argument("--michaelov-n1", type=bounded_number(*defaults.MICHAELOV_N1_RANGE), default=defaults.MICHAELOV_N1, metavar="N1",

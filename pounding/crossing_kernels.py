@@ -91,7 +91,8 @@ def clumped_crossings(levels, sigma, rate, clumping):
 def time_cut_rate(gap, sigma_x, sigma_v):
     """Rice's rate of upcrossings of the gap per unit of time spent below it,
     (sigma_V / (2 pi sigma_X)) exp(-u^2 / 2) / Phi(u), u = gap / sigma_X [1/s];
-    0 beyond :data:`U_MAX` (G4-G5)."""
+    0 beyond :data:`U_MAX` (G4-G5). The time cut was chosen over Zhuravlev's
+    mirror returns by looking at Monte Carlo results (docs/theory.md)."""
     u = gap / sigma_x
     if u >= U_MAX:
         return 0.0

@@ -9,6 +9,8 @@ import os
 __all__ = [
     "ACCURACY_SEED",
     "CASE",
+    "PAPER_VARIANCE",
+    "SEED",
     "LIMITS_VARIABLE",
     "MAX_CASE_FILE_BYTES",
     "MAX_GAPS",
@@ -35,6 +37,10 @@ __all__ = [
 
 CASE = "section5-T2-0.4"
 """The built-in case the dashboard opens on: the paper's Section 5, T2 = 0.4 s."""
+SEED = 0
+"""Seed of a Monte Carlo study (``pounding simulate``, ``simulate``, ``design_gap``, ``pounding sweep``)."""
+PAPER_VARIANCE = "eq28"
+"""How the paper's method takes sigma_V(t) under an envelope: Eq. 28, as published (or "exact")."""
 TARGET_PROBABILITY = 0.95
 """Target probability of *no* pounding during the record for the gap needed [-]."""
 MICHAELOV_N1 = 3.0

@@ -188,7 +188,7 @@ def _pair(case) -> LinearizedPair:
 def estimate(
     case: Case | LinearizedPair,
     target_probability: float = defaults.TARGET_PROBABILITY,
-    paper_variance: str = "eq28",
+    paper_variance: str = defaults.PAPER_VARIANCE,
     michaelov_n1: float = defaults.MICHAELOV_N1,
 ) -> Estimate:
     """Expected extreme pounding force of ``case`` by both closed forms.

@@ -15,7 +15,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import defaults
-from .errors import CaseError, check_limit, described, finite_number, quote, whole_number
+from .errors import (
+    CaseError,
+    check_limit,
+    described,
+    finite_number,
+    quote,
+    whole_number,
+)
 
 __all__ = [
     "CloughPenzien",
@@ -29,8 +36,8 @@ __all__ = [
 ]
 
 
-FILTER_FREQUENCY_MAX = 1e4
-"""Largest filter frequency omega_g, omega_f [rad/s] (1.6 kHz: far above any ground motion)."""
+FILTER_FREQUENCY_MAX = 1e6
+"""Largest filter frequency omega_g, omega_f [rad/s] (160 kHz: far above any ground motion; a wide filter stands for white noise)."""
 FILTER_DAMPING_MAX = 100.0
 """Largest filter damping ratio xi_g, xi_f [-] (beyond, the filter is flat over every building's frequencies)."""
 

@@ -58,14 +58,14 @@ class Crossings:
     """sigma_X(t), sigma_V(t) of the free linearized pair (with the residual's
     response) on a time grid, with trapezoid weights [s]; the bandwidth q of X
     and its stationary (sigma_V / sigma_X)^2 [1/s^2]; the impacts' damping of
-    the relative motion (None: the motion is counted free)."""
+    the relative motion."""
 
     sigma_x: np.ndarray
     sigma_v: np.ndarray
     weights: np.ndarray
-    bandwidth: float = 1.0
-    frequency_squared: float = 0.0
-    damping: ImpactDamping | None = None
+    bandwidth: float
+    frequency_squared: float
+    damping: ImpactDamping
 
     @classmethod
     def of(cls, pair) -> Crossings:
@@ -93,27 +93,21 @@ class Crossings:
         frequency_squared = (response.sigma_relative_velocity / response.sigma_relative_displacement) ** 2
         return cls(x, v, w, damping.bandwidth, frequency_squared, damping)
 
-    def intensity(self, gaps, velocities, clumps: bool = True) -> np.ndarray:
+    def intensity(self, gaps, velocities) -> np.ndarray:
         """Lambda(gap, v) of the free motion (G8): expected number of approaches
         faster than v before the impacts change the motion, shape (gaps, velocities).
 
         The count of the probability of pounding and of the gap for a target
-        probability: the first impact meets the free motion. ``clumps=False``
-        counts every crossing (no Vanmarcke factor): an upper bound on the
-        number of clumps."""
+        probability: the first impact meets the free motion."""
         gaps = np.ascontiguousarray(gaps, dtype=float).ravel()
         ones = np.ones(gaps.size)
-        clumping = VANMARCKE_DOUBLE_BARRIER * self.bandwidth**CLUMP_EXPONENT if clumps else math.inf
+        clumping = VANMARCKE_DOUBLE_BARRIER * self.bandwidth**CLUMP_EXPONENT
         return self._kernel(gaps, velocities, np.full(gaps.size, clumping), ones, ones)
 
     def damped(self, gaps) -> DampedMotion:
         """The motion between impacts at each gap [m]: the free motion damped by
-        its impacts (G12-G13; undamped without ``damping``)."""
-        gaps = np.ascontiguousarray(gaps, dtype=float).ravel()
-        if self.damping is None:
-            ones, zeros = np.ones(gaps.size), np.zeros(gaps.size)
-            return DampedMotion(zeros, ones, ones, np.full(gaps.size, self.bandwidth), zeros)
-        return self.damping.damped(gaps)
+        its impacts (G12-G13)."""
+        return self.damping.damped(np.ascontiguousarray(gaps, dtype=float).ravel())
 
     def impacting_intensity(self, gaps, velocities, motion: DampedMotion) -> np.ndarray:
         """Lambda(gap, v) of the impacting motion, ``motion`` from :meth:`damped`

@@ -8,7 +8,10 @@ the mean position), the motion before each approach is the weaker for the
 impacts before it; where the pair forgets an impact before the next (yielded
 or dephasing buildings, a gap far from the mean), it is not.
 
-The model (docs/theory.md, G10-G15):
+The model (docs/theory.md, G10-G15; the energy map with exponential
+intervals was chosen among five readings of the memory by looking at Monte
+Carlo results, docs/theory.md, "Constants chosen by looking at Monte Carlo
+results"):
 
 - *impacts* come at Rice's rate with the time cut, nu = (sigma_V / sigma_X)
   exp(-u^2 / 2) / (2 pi Phi(u)), u = d / sigma_X, at intervals taken as
@@ -74,6 +77,12 @@ class DampedMotion:
     ratio_velocity: np.ndarray
     bandwidth: np.ndarray
     memory: np.ndarray
+
+    @classmethod
+    def undamped(cls, gaps: int, bandwidth: float) -> DampedMotion:
+        """The free motion itself at ``gaps`` gaps (no dashpot), of bandwidth q [-]."""
+        ones, zeros = np.ones(gaps), np.zeros(gaps)
+        return cls(zeros, ones, ones, np.full(gaps, float(bandwidth)), zeros)
 
 
 @dataclass(frozen=True, eq=False)

@@ -29,7 +29,6 @@ import math
 import numpy as np
 from numba import njit
 
-
 # Codes of the contact laws (the index of the law in ``contact.CONTACT_LAWS``).
 JANKOWSKI, HERTZ, HERTZDAMP, LINEAR = range(4)
 

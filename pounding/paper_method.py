@@ -67,7 +67,7 @@ def check_michaelov_n1(n1) -> None:
         raise CaseError("michaelov_n1", f"must lie in [{low:g}, {high:g}], got {n1!r}")
 
 
-def paper_estimate(pair, variance_method: str = "eq28", michaelov_n1: float = defaults.MICHAELOV_N1) -> PaperEstimate:
+def paper_estimate(pair, variance_method: str = defaults.PAPER_VARIANCE, michaelov_n1: float = defaults.MICHAELOV_N1) -> PaperEstimate:
     """The published estimator, Eq. 12-30, on a :class:`~pounding.pair.LinearizedPair`
     (its stationary response, without the residual's).
 

@@ -86,7 +86,10 @@ def expected_peak(sigma, rate, duration):
 
 VANMARCKE_DOUBLE_BARRIER = math.sqrt(math.pi / 2.0)
 """Vanmarcke's (1975) constant for crossings of a double barrier, two a period
-while the envelope is high: the clump factor's exponent is this times q^1.2 r."""
+while the envelope is high: the clump factor's exponent is this times q^1.2 r.
+The gap-aware estimator counts the impacts, which cross one barrier, with it
+too: chosen over the one-sided sqrt(2 pi) by looking at Monte Carlo results
+(docs/theory.md, "Constants chosen by looking at Monte Carlo results")."""
 
 
 def expected_absolute_peak(sigma, sigma_derivative, weights, bandwidth: float, points: int = 91) -> float:

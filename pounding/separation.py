@@ -1,6 +1,9 @@
 """The separation rules beside the design gap (docs/theory.md, G23-G25): SRSS,
 ABS and DDC combinations of each contact floor's expected peak |x|, the
-linearized floor's sigmas from rest with Vanmarcke's clumps."""
+linearized floor's sigmas from rest with Vanmarcke's clumps. The floors'
+sigmas are the linearized ones, without the residual's response: chosen by
+looking at Monte Carlo results, where with it the peaks went higher still
+above the simulated ones (docs/theory.md)."""
 
 from __future__ import annotations
 

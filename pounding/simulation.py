@@ -21,9 +21,23 @@ from scipy.special import (  # binomial CDF, Student t quantile; scipy.stats cos
 from . import defaults
 from . import integrator as kernel
 from .case import Case
-from .errors import CaseError, check_limit, check_probability, described, finite_number, quote
+from .errors import (
+    CaseError,
+    check_limit,
+    check_probability,
+    described,
+    finite_number,
+    quote,
+)
 from .excitation import ground_accelerations
-from .system import Cancelled, Settings, check_records, check_study, failure, kernel_system
+from .system import (
+    Cancelled,
+    Settings,
+    check_records,
+    check_study,
+    failure,
+    kernel_system,
+)
 
 __all__ = [
     "Cancelled",
@@ -135,7 +149,7 @@ class SimulationResult:
 def simulate(
     case: Case,
     records: int = defaults.RECORDS,
-    seed: int = 0,
+    seed: int = defaults.SEED,
     settings: Settings | None = None,
     progress: Callable[[int, int], None] | None = None,
     cancel: threading.Event | None = None,
@@ -297,7 +311,7 @@ def design_gap(
     case: Case,
     target_probability: float = defaults.TARGET_PROBABILITY,
     records: int = defaults.DESIGN_GAP_RECORDS,
-    seed: int = 0,
+    seed: int = defaults.SEED,
     settings: Settings | None = None,
     progress: Callable[[int, int], None] | None = None,
     cancel: threading.Event | None = None,
@@ -469,7 +483,7 @@ def _integrate(case: Case, record: np.ndarray, time_step: float, initial_state, 
     )
 
 
-def simulate_record(case: Case, seed: int = 0, index: int = 0, settings: Settings | None = None) -> TimeHistory:
+def simulate_record(case: Case, seed: int = defaults.SEED, index: int = 0, settings: Settings | None = None) -> TimeHistory:
     """Full time histories of record ``index`` of the study seeded ``seed``
     (the same record ``simulate`` integrates under that index)."""
     case, settings = check_study(case, settings, None, None)

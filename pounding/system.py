@@ -11,7 +11,15 @@ import numpy as np
 from . import defaults
 from . import integrator as kernel
 from .case import Case, as_case
-from .errors import CaseError, SimulationError, check_limit, described, finite_number, quote, whole_number
+from .errors import (
+    CaseError,
+    SimulationError,
+    check_limit,
+    described,
+    finite_number,
+    quote,
+    whole_number,
+)
 
 __all__ = ["Cancelled", "KernelSystem", "Settings", "check_records", "check_study", "failure", "kernel_system"]
 

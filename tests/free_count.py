@@ -3,17 +3,16 @@ damping of the motion between them), composed from the public building
 blocks of :mod:`pounding.gap_aware`: the comparison the estimator no longer
 offers as an option."""
 
-import dataclasses
-
 import numpy as np
 
 from pounding.gap_aware import Crossings, expected_force_maximum
+from pounding.impact_damping import DampedMotion
 
 
 def free_force(case, crossings: Crossings, gaps, points: int = 121) -> np.ndarray:
     """E[F_max] [N] at each of ``gaps`` [m] with the largest approach counted
     on the free motion of ``crossings`` (an estimate's, or ``Crossings.of(pair)``);
     ``points``: 121 as a single estimate, 81 as a gap curve."""
-    free = dataclasses.replace(crossings, damping=None)
     gaps = np.atleast_1d(np.asarray(gaps, dtype=float))
-    return expected_force_maximum(free, gaps, case.contact, case.reduced_mass, free.damped(gaps), points)
+    free = DampedMotion.undamped(gaps.size, crossings.bandwidth)
+    return expected_force_maximum(crossings, gaps, case.contact, case.reduced_mass, free, points)

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from pounding import CaseError, load_case, simulate_record
+from pounding.crossing_kernels import approach_intensity
 from pounding.estimator import estimate, force_versus_gap
 from pounding.linearization import linearize_pair
 from pounding.pair import LinearizedPair
@@ -139,7 +140,9 @@ def test_required_gap_gives_the_target_probability():
     the target there, and the best-estimate probability (clumps) no larger."""
     case = load_case("section5-T2-0.8")
     result = estimate(case, target_probability=0.9)
-    crossings = result.crossings.intensity(np.array([result.required_gap]), np.zeros(1), clumps=False)[0, 0]
+    free = result.crossings  # every crossing counted: the intensity kernel without clumps (clump constant inf)
+    crossings = approach_intensity(np.array([result.required_gap]), np.zeros(1), free.sigma_x, free.sigma_v, free.weights,
+                                   np.full(1, np.inf), np.ones(1), np.ones(1))[0, 0]
     assert 0.9 <= math.exp(-crossings) <= 0.9 + 1e-7  # the bisection ends on the safe side
     at_gap = estimate(_with(case, gap=result.required_gap), target_probability=0.9)
     assert at_gap.pounding_probability <= 0.1 + 1e-9

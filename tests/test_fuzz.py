@@ -11,7 +11,6 @@ import json
 import math
 import tomllib
 
-import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 

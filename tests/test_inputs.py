@@ -21,7 +21,6 @@ from pounding import (
     CloughPenzien,
     Contact,
     Excitation,
-    KanaiTajimi,
     Settings,
     ShinozukaSato,
     Storey,
@@ -32,7 +31,7 @@ from pounding import (
     simulate_record,
 )
 from pounding import defaults
-from pounding.case import Case, as_case, case_from_dict
+from pounding.case import as_case, case_from_dict
 from pounding.cli import main
 from pounding.errors import check_probability
 from pounding.presets import preset_text

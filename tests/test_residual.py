@@ -9,12 +9,16 @@ import pytest
 from scipy.linalg import expm
 
 from pounding import load_case
+from pounding.linearization.residual import (
+    residual_chaos,
+    residual_correlation,
+    residual_response,
+)
 from pounding.pair import LinearizedPair
-from pounding.linearization.residual import residual_chaos, residual_correlation, residual_response
-from pounding.linearization.residual_sampled import residual_response_sampled
 from pounding.response import contact_output_matrix
 from pounding.simulation import simulate_record
 from pounding.validation import varied_case
+from validation.residual_sampled import residual_response_sampled
 
 
 def _bouc_wen_rate(law, velocity, z):

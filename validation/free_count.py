@@ -18,6 +18,7 @@ import numpy as np
 
 from pounding.case import Case
 from pounding.gap_aware import Crossings, expected_force_maximum, opposing_forces
+from pounding.impact_damping import DampedMotion
 from pounding.pair import LinearizedPair
 from pounding.regimes import accuracy_regime
 
@@ -34,10 +35,17 @@ class CountedCrossings(Crossings):
     """:class:`~pounding.gap_aware.Crossings` whose count of the largest approach
     (:meth:`impacting_intensity`) is ``count(crossings, gaps, velocities, motion)``
     -> Lambda of shape (gaps, velocities), ``motion`` the damped motion at the gaps
-    (ratios 1 on the free motion); the pounding probability and the required gap
-    (:meth:`intensity`) keep the estimator's."""
+    (ratios 1 on the free motion: ``free=True``, the count without the impacts'
+    damping); the pounding probability and the required gap (:meth:`intensity`)
+    keep the estimator's."""
 
     count: Callable | None = None
+    free: bool = False
+
+    def damped(self, gaps) -> DampedMotion:
+        if self.free:
+            return DampedMotion.undamped(np.asarray(gaps, dtype=float).size, self.bandwidth)
+        return super().damped(gaps)
 
     def impacting_intensity(self, gaps, velocities, motion) -> np.ndarray:
         if self.count is None:
@@ -68,10 +76,8 @@ def free_estimate(case_or_pair, count: Callable | None = None, damped: bool = Fa
     pair = linearized(case_or_pair)
     case = pair.case
     crossings = Crossings.of(pair)
-    if not damped:
-        crossings = dataclasses.replace(crossings, damping=None)
-    if count is not None:
-        crossings = CountedCrossings(**{f.name: getattr(crossings, f.name) for f in dataclasses.fields(Crossings)}, count=count)
+    fields = {f.name: getattr(crossings, f.name) for f in dataclasses.fields(Crossings)}
+    crossings = CountedCrossings(**fields, count=count, free=not damped)
     gap = np.array([case.contact.gap])
     response = pair.response_with_residual
     force = float(expected_force_maximum(crossings, gap, case.contact, case.reduced_mass, crossings.damped(gap))[0])

@@ -52,10 +52,10 @@ from pounding import integrate, load_case
 from pounding.estimator import estimate
 from pounding.excitation import ground_accelerations
 from pounding.linearization.residual import residual_response, residual_storeys
-from pounding.linearization.residual_sampled import sampled_residual_paths
 from pounding.pair import LinearizedPair
 from pounding.simulation import design_gap
 from pounding.validation import RANDOM_FAMILIES, accuracy_cases, random_cases
+from validation.residual_sampled import sampled_residual_paths
 
 from .approach_chain import linear_impacts_expected_power, linearized_pair
 from .clump_models import pair_rows, phi

@@ -32,9 +32,9 @@ import numpy as np
 
 from pounding import load_case, simulate_record
 from pounding.linearization.residual import residual_response
-from pounding.linearization.residual_sampled import residual_response_sampled
 from pounding.pair import LinearizedPair
 from pounding.validation import varied_case
+from validation.residual_sampled import residual_response_sampled
 
 from .record_synthesis import clough_penzien, with_excitation
 from .sizes import first

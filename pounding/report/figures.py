@@ -27,7 +27,13 @@ class Figures:
     """
 
     def __init__(self):
-        from bokeh.models import ColumnDataSource, HoverTool, LinearAxis, Range1d, Whisker
+        from bokeh.models import (
+            ColumnDataSource,
+            HoverTool,
+            LinearAxis,
+            Range1d,
+            Whisker,
+        )
         from bokeh.plotting import figure
 
         common = dict(output_backend="canvas", sizing_mode="stretch_width", tools="pan,wheel_zoom,box_zoom,reset,save")

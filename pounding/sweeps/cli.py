@@ -35,7 +35,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
 
     parser.add_argument("--records", type=record_count, default=defaults.SWEEP_RECORDS,
                         help=f"Monte Carlo records per point (default {defaults.SWEEP_RECORDS})")
-    parser.add_argument("--seed", type=whole_number(0), default=0, help="seed of the study (default 0)")
+    parser.add_argument("--seed", type=whole_number(0), default=defaults.SEED, help=f"seed of the study (default {defaults.SEED})")
     parser.add_argument("-o", "--output", required=True, metavar="DIR",
                         help="folder of the results and of the finished chunks (rerun with it to resume)")
     parser.add_argument("--scheduler", default=None, metavar="ADDRESS",

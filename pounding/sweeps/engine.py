@@ -211,7 +211,7 @@ def sweep(
     case,
     vary: Mapping[str, Sequence[float] | str] | Iterable[str] | None,
     records: int = defaults.SWEEP_RECORDS,
-    seed: int = 0,
+    seed: int = defaults.SEED,
     output_dir: str | os.PathLike = "sweep",
     scheduler=None,
     chunk_records: int = CHUNK_RECORDS,
