@@ -71,8 +71,11 @@ def _simulate(args) -> int:
     low, high = result.force_max_confidence_interval
     print(f"case            {case.name}")
     print(f"records         {result.n_records} x {case.excitation.duration:g} s, seed {args.seed}")
-    print(f"mean F_max      {_format_force(result.force_max_mean)}  (standard error {_format_force(result.force_max_std_error)})")
-    print(f"95% CI          {_format_force(low)} .. {_format_force(high)}")
+    if math.isfinite(result.force_max_std_error):
+        print(f"mean F_max      {_format_force(result.force_max_mean)}  (standard error {_format_force(result.force_max_std_error)})")
+        print(f"95% CI          {_format_force(low)} .. {_format_force(high)}")
+    else:
+        print(f"mean F_max      {_format_force(result.force_max_mean)}  (one record: no standard error; run 2 or more)")
     print(f"pounding        {100 * result.pounding_fraction:.1f} % of records, {result.impacts_mean:.2f} impacts per record")
     print(f"peak impact v   {result.impact_velocity_max.mean():.4f} m/s (mean over records)")
     if closed_form is None:

@@ -51,7 +51,8 @@ C_MODEL, C_GAP, C_STIFFNESS, C_DAMPING_RATIO, C_REDUCED_MASS = range(5)
 ) = range(10)
 SUMMARY_COLUMNS = 10
 # Status codes.
-OK, NOT_FINITE, RUNAWAY, STEP_UNDERFLOW, HISTORY_FULL = range(5)
+OK, NOT_FINITE, RUNAWAY, STEP_UNDERFLOW, HISTORY_FULL, STEP_LIMIT = range(6)
+TRIALS_PER_SAMPLE = 1000  # step trials allowed per record sample (and a million more): beyond, too stiff to integrate
 
 # Dormand-Prince 5(4) tableau.
 _C2, _C3, _C4, _C5 = 1 / 5, 3 / 10, 4 / 5, 8 / 9
@@ -61,8 +62,7 @@ _A41, _A42, _A43 = 44 / 45, -56 / 15, 32 / 9
 _A51, _A52, _A53, _A54 = 19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729
 _A61, _A62, _A63, _A64, _A65 = 9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656
 _B1, _B3, _B4, _B5, _B6 = 35 / 384, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84
-# Error weights: 5th-order minus embedded 4th-order solution.
-_E1, _E3, _E4, _E5, _E6, _E7 = 71 / 57600, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40
+_E1, _E3, _E4, _E5, _E6, _E7 = 71 / 57600, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40  # 5th - 4th order
 
 
 # --- the laws -----------------------------------------------------------------
@@ -268,6 +268,7 @@ def integrate_record(
     steps = 0
     stored = 0
     h_min = 1e-12 * max(time_step, 1.0)
+    trials_left = TRIALS_PER_SAMPLE * record.size + 1_000_000
     force = derivatives(record[0], y, k1, floors, below, contact, floor_1, floor_2, approach_velocity)
     # The last two accepted (time, force) samples, for the peak between steps.
     t_back_2, force_back_2, t_back_1, force_back_1 = -2.0, 0.0, -1.0, force
@@ -323,6 +324,10 @@ def integrate_record(
             error = math.sqrt(error / n_state)
             if not math.isfinite(error):
                 status = NOT_FINITE
+                break
+            trials_left -= 1
+            if trials_left < 0:
+                status = STEP_LIMIT
                 break
             if error > 1.0:
                 h = h_try * max(0.2, 0.9 * error**-0.2)

@@ -132,8 +132,9 @@ class SimulationResult:
             "records": self.n_records,
             "duration": self.case.excitation.duration,
             "force_max_mean": self.force_max_mean,
-            "force_max_std_error": self.force_max_std_error,
-            "force_max_ci95": [low, high],
+            # One record has no standard error: null, not JSON's non-standard Infinity.
+            "force_max_std_error": _finite_or_none(self.force_max_std_error),
+            "force_max_ci95": [_finite_or_none(low), _finite_or_none(high)],
             "pounding_fraction": self.pounding_fraction,
             "impacts_mean": self.impacts_mean,
             "force_max": self.force_max.tolist(),
@@ -144,6 +145,10 @@ class SimulationResult:
             "relative_displacement_max": self.relative_displacement_max.tolist(),
             "units": {"force": "N", "length": "m", "velocity": "m/s", "duration": "s"},
         }
+
+
+def _finite_or_none(value: float) -> float | None:
+    return float(value) if math.isfinite(value) else None
 
 
 def simulate(

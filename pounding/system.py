@@ -29,6 +29,8 @@ _FAILURES = {
     kernel.NOT_FINITE: "the response became NaN or infinite",
     kernel.RUNAWAY: "a floor displacement exceeded the runaway limit of {limit:g} m",
     kernel.STEP_UNDERFLOW: "the step size fell below 1e-12 s (the system is too stiff to resolve)",
+    kernel.STEP_LIMIT: f"it needs over {kernel.TRIALS_PER_SAMPLE} steps a sample: too stiff to integrate in time (check the contact "
+    "stiffness and the masses)",
 }
 
 

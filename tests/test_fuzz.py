@@ -11,6 +11,7 @@ import json
 import math
 import tomllib
 
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -184,3 +185,19 @@ def test_a_mutated_command_line_runs_or_is_refused_in_one_line(option, value):
         lines = err.strip().splitlines()
         assert len(lines) == 1, err
         assert option in lines[0] or code == 1, err
+
+
+@pytest.mark.timeout(300)
+@settings(max_examples=40, deadline=10000, suppress_health_check=[HealthCheck.too_slow], derandomize=True)
+@given(content=mutated_case())
+def test_a_mutated_case_file_is_simulated_or_refused_in_one_line(tmp_path_factory, content):
+    """The Monte Carlo path of the same mutations (one record each): its numbers finite, or one line."""
+    path = tmp_path_factory.mktemp("fuzz") / "case.toml"
+    path.write_bytes(content)
+    code, out, err = _run(["simulate", str(path), "--records", "1", "--json"])
+    assert "Traceback" not in err
+    if code == 0:
+        data = json.loads(out)
+        assert _finite({key: value for key, value in data.items() if key != "closed_form"})
+    else:
+        assert code in (1, 2) and len(err.strip().splitlines()) == 1, err
