@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import defaults
+from .filter_bank import FilterBank
 from .errors import (
     CaseError,
     check_limit,
@@ -27,6 +28,7 @@ from .errors import (
 __all__ = [
     "CloughPenzien",
     "Excitation",
+    "FilterBank",
     "KanaiTajimi",
     "ShinozukaSato",
     "ground_acceleration",
@@ -177,7 +179,7 @@ class Excitation:
 
     Parameters
     ----------
-    spectrum : KanaiTajimi or CloughPenzien
+    spectrum : KanaiTajimi, CloughPenzien or FilterBank
         Two-sided PSD of the stationary ground acceleration.
     duration : float
         Record length [s].
@@ -198,7 +200,7 @@ class Excitation:
         docs/accuracy.md). 1 to 64.
     """
 
-    spectrum: KanaiTajimi
+    spectrum: KanaiTajimi | FilterBank
     duration: float
     envelope: ShinozukaSato | None = None
     time_step: float = 0.005
@@ -210,8 +212,8 @@ class Excitation:
         if not (isinstance(factor, numbers.Integral) and not isinstance(factor, bool) and 1 <= factor <= 64):
             raise CaseError("synthesis_factor", f"must be an integer from 1 to 64, got {quote(factor)}")
         object.__setattr__(self, "synthesis_factor", whole_number("synthesis_factor", factor))
-        if not isinstance(self.spectrum, KanaiTajimi):
-            raise CaseError("spectrum", f"must be a KanaiTajimi or CloughPenzien, got {described(self.spectrum)}")
+        if not isinstance(self.spectrum, (KanaiTajimi, FilterBank)):
+            raise CaseError("spectrum", f"must be a KanaiTajimi, CloughPenzien or FilterBank, got {described(self.spectrum)}")
         if self.envelope is not None and not isinstance(self.envelope, ShinozukaSato):
             raise CaseError("envelope", f"must be a ShinozukaSato or None, got {described(self.envelope)}")
         _positive(self, "duration")

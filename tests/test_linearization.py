@@ -11,6 +11,7 @@ from scipy.special import erf
 
 import pounding
 from pounding.errors import ConvergenceError
+from pounding.filter_bank import FilterBank
 from pounding.excitation import CloughPenzien, KanaiTajimi
 from pounding.linearization import (
     LinearizedBuilding,
@@ -107,15 +108,22 @@ def test_lyapunov_solver_matches_scipy(size):
 
 
 @pytest.mark.parametrize(
-    "spectrum", [KanaiTajimi(0.0065, 27.02, 0.34), CloughPenzien(0.0065, 15.0, 0.6, omega_f=1.5, xi_f=0.7)]
+    "spectrum",
+    [
+        KanaiTajimi(0.0065, 27.02, 0.34),
+        CloughPenzien(0.0065, 15.0, 0.6, omega_f=1.5, xi_f=0.7),
+        FilterBank(0.002, (3.0, 11.0, 40.0), (0.2, 0.45, 0.7), (0.4, 1.0, 0.0)),
+    ],
 )
 def test_ground_filter_reproduces_the_spectrum(spectrum):
     ground = ground_filter(spectrum)
     omega = np.array([0.0, 0.3, 1.5, 7.0, 27.0, 80.0, 400.0])
+    # one transfer function per independent noise; their powers add
     transfer = np.array(
         [ground.output @ np.linalg.solve(1j * w * np.eye(ground.size) - ground.matrix, ground.noise_input) for w in omega]
     )
-    np.testing.assert_allclose(np.abs(transfer) ** 2 * ground.G0, spectrum.psd(omega), rtol=1e-10, atol=1e-18)
+    power = np.sum(np.abs(transfer) ** 2, axis=1) * ground.G0
+    np.testing.assert_allclose(power, spectrum.psd(omega), rtol=1e-10, atol=1e-18)
 
 
 def _sdof(period=0.5, mass=2.0e4, xi=0.04, law=None):

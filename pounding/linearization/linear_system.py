@@ -75,8 +75,9 @@ class StateSpace:
     ----------
     matrix : ndarray, (n, n)
         State matrix A_s.
-    noise_input : ndarray, (n,)
-        b.
+    noise_input : ndarray, (n, m)
+        B: one column per independent white noise (one for a Kanai-Tajimi or
+        Clough-Penzien filter, one per component of a filter bank).
     G0 : float
         Two-sided white-noise intensity [m^2/s^3].
     displacement, velocity, hysteretic : tuple of ndarray
@@ -108,9 +109,9 @@ class StateSpace:
 
     @property
     def noise_covariance(self) -> np.ndarray:
-        """2 pi G0 b b^T: the intensity matrix of the white noise, whose
-        covariance is 2 pi G0 delta(tau) for a two-sided PSD G0."""
-        return 2.0 * math.pi * self.G0 * np.outer(self.noise_input, self.noise_input)
+        """2 pi G0 B B^T: the intensity matrix of the white noises, each of
+        covariance 2 pi G0 delta(tau) for a two-sided PSD G0."""
+        return 2.0 * math.pi * self.G0 * (self.noise_input @ self.noise_input.T)
 
     def acceleration(self, building: int) -> np.ndarray:
         """Rows of the floor accelerations relative to the ground [m/s^2]
@@ -126,7 +127,7 @@ class StateSpace:
         return _drift_operator(self.velocity[building])
 
     def covariance(self) -> np.ndarray:
-        """Stationary state covariance P: A P + P A^T + 2 pi G0 b b^T = 0
+        """Stationary state covariance P: A P + P A^T + 2 pi G0 B B^T = 0
         (solved once per model; read-only)."""
         return self._stationary_covariance
 
@@ -177,7 +178,7 @@ def state_space(buildings, spectrum: KanaiTajimi) -> StateSpace:
     Parameters
     ----------
     buildings : sequence of LinearizedBuilding
-    spectrum : KanaiTajimi or CloughPenzien
+    spectrum : KanaiTajimi, CloughPenzien or FilterBank
         Stationary ground-acceleration spectrum (two-sided, [m^2/s^3]).
     """
     buildings = tuple(buildings)
@@ -187,7 +188,7 @@ def state_space(buildings, spectrum: KanaiTajimi) -> StateSpace:
     coupling = np.zeros((size, size))
     filter_slice = slice(size - ground.size, size)
     matrix[filter_slice, filter_slice] = ground.matrix
-    noise_input = np.zeros(size)
+    noise_input = np.zeros((size, ground.noise_input.shape[1]))
     noise_input[filter_slice] = ground.noise_input
     ground_row = np.zeros(size)
     ground_row[filter_slice] = ground.output
