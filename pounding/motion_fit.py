@@ -193,17 +193,19 @@ def _mean_periodogram(segments, cutoff: float) -> tuple[np.ndarray, np.ndarray, 
     the number of periodogram values each bin averages."""
     from scipy import fft
 
-    durations = np.array([duration for _, _, duration in segments])
+    durations = np.array([segment[2] for segment in segments])
     low = max(LOWEST_FREQUENCY, 2.0 * math.pi / durations.min())
     if not cutoff > 2.0 * low:
-        raise CaseError("cutoff_frequency", f"must exceed twice the lowest fitted frequency, {2 * low:.3g} rad/s, got {cutoff:.4g}")
+        shortest = segments[int(np.argmin(durations))][3]
+        raise CaseError("cutoff_frequency", f"must exceed twice the lowest fitted frequency, {2 * low:.3g} rad/s "
+                                            f"(2 pi / the strong-motion duration of {quote(shortest, 60)}), got {cutoff:.4g}")
     edges = _bin_edges(low, cutoff, 2.0 * math.pi / durations.min())
     bins = edges.size - 1
     power = np.zeros(bins)
     covered = np.zeros(bins)
     frequency_sum = np.zeros(bins)
     frequency_count = np.zeros(bins)
-    for values, step, duration in segments:
+    for values, step, duration, _ in segments:
         n = fft.next_fast_len(values.size, real=True)
         omega = np.arange(n // 2 + 1) * (2.0 * math.pi / (n * step))
         window = _taper(values.size)
@@ -284,7 +286,7 @@ def fit_excitation(records: Sequence[Accelerogram], cutoff_frequency: float) -> 
     segments = []
     for record in records:
         values, duration = _strong_motion(record)
-        segments.append((values, record.time_step, duration))
+        segments.append((values, record.time_step, duration, record.name))
     omega, mean, counts = _mean_periodogram(segments, cutoff)
     positive = mean > 1e-12 * mean.max()
     if np.count_nonzero(positive) < 8:
@@ -311,7 +313,7 @@ def fit_excitation(records: Sequence[Accelerogram], cutoff_frequency: float) -> 
     n = len(records)
     return FittedExcitation(
         spectrum=spectrum,
-        duration=float(np.mean([duration for _, _, duration in segments])),
+        duration=float(np.mean([segment[2] for segment in segments])),
         duration_definition=f"mean 5-95 % Arias duration of the {n} records" if n > 1 else "5-95 % Arias duration of the record",
         frequencies=omega,
         periodogram=mean,
