@@ -155,3 +155,10 @@ def test_fit_errors():
             fit_excitation(records, cutoff)
     with pytest.raises(CaseError, match="zero throughout"):
         fit_excitation([Accelerogram("quiet", 0.01, np.zeros(100))], 100.0)
+
+
+def test_a_cutoff_too_low_for_the_shortest_strong_motion_names_it():
+    burst = Accelerogram("m/short.AT2", 0.01, np.r_[np.zeros(50), 1.0, -1.0, np.zeros(50)])  # strong motion of 0.02 s
+    with pytest.raises(CaseError) as caught:
+        fit_excitation([burst], 100.0)
+    assert caught.value.field == "cutoff_frequency" and "m/short.AT2" in caught.value.message
