@@ -17,14 +17,17 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from . import defaults
+from .case_excitation import read_excitation
+from .case_fields import build, check_keys, number, quantity, to_si
 from .contact import Contact, contact_law
-from .errors import CaseError, check_limit, described, finite_number, quote
-from .excitation import CloughPenzien, Excitation, KanaiTajimi, ShinozukaSato
+from .errors import CaseError, check_limit, described, quote
+from .excitation import Excitation
+from .hazard import DesignSpectrum, RecordedMotions
 from .presets import preset_description, preset_names, preset_text
 from .structures import BoucWen, Building, Storey, check_storey_count
 from .units import SI, UNIT_SYSTEMS, UnitSystem, unit_system
 
-__all__ = ["DEFAULT_PRESET", "Case", "as_case", "case_from_dict", "load_case", "read_case_file", "preset_description", "preset_names"]
+__all__ = ["DEFAULT_PRESET", "Case", "as_case", "case_from_dict", "load_case", "preset_description", "preset_names", "read_case_file"]
 
 DEFAULT_PRESET = defaults.CASE
 
@@ -44,6 +47,10 @@ class Case:
     units : str
         The unit system the case was written in (for display only: every
         quantity held here is SI).
+    hazard : DesignSpectrum, RecordedMotions or None
+        Where the excitation came from (:mod:`pounding.hazard`): for recorded
+        motions, the Monte Carlo integrates ``hazard.records`` and the closed
+        form takes ``excitation``, the spectrum fitted to them.
     """
 
     excitation: Excitation
@@ -52,6 +59,7 @@ class Case:
     name: str = "case"
     description: str = ""
     units: str = "SI"
+    hazard: DesignSpectrum | RecordedMotions | None = None
 
     def __post_init__(self):
         if not isinstance(self.excitation, Excitation):
@@ -62,9 +70,9 @@ class Case:
         if len(buildings) != 2:
             raise CaseError("buildings", f"a case has exactly two buildings, got {len(buildings)}")
         object.__setattr__(self, "buildings", tuple(buildings))
-        for number, building in enumerate(self.buildings, start=1):
+        for index, building in enumerate(self.buildings, start=1):
             if not isinstance(building, Building):
-                raise CaseError(f"buildings.{number}", f"must be a Building, got {described(building)}")
+                raise CaseError(f"buildings.{index}", f"must be a Building, got {described(building)}")
         if not isinstance(self.contact, Contact):
             raise CaseError("contact", f"must be a Contact, got {described(self.contact)}")
         for key in ("name", "description"):
@@ -72,12 +80,21 @@ class Case:
                 raise CaseError(key, f"must be a string, got {described(getattr(self, key))}")
         if not (isinstance(self.units, str) and self.units in UNIT_SYSTEMS):
             raise CaseError("units", f"must be one of {', '.join(UNIT_SYSTEMS)}, got {quote(self.units)}")
-        for number, (level, building) in enumerate(zip(self.contact.levels, self.buildings), start=1):
+        if self.hazard is not None and not isinstance(self.hazard, (DesignSpectrum, RecordedMotions)):
+            raise CaseError("hazard", f"must be a DesignSpectrum, RecordedMotions or None, got {described(self.hazard)}")
+        if isinstance(self.hazard, RecordedMotions):
+            _check_record_lengths(self.hazard, self.buildings)
+        for index, (level, building) in enumerate(zip(self.contact.levels, self.buildings), start=1):
             if level > building.n_storeys:
                 raise CaseError(
                     "contact.levels",
-                    f"building {number} has {building.n_storeys} storey(s); its contact level must lie in 1..{building.n_storeys}, got {quote(level)}",
+                    f"building {index} has {building.n_storeys} storey(s); its contact level must lie in 1..{building.n_storeys}, got {quote(level)}",
                 )
+
+    @property
+    def recorded(self) -> bool:
+        """Whether the Monte Carlo integrates recorded accelerograms (not synthetic records)."""
+        return isinstance(self.hazard, RecordedMotions)
 
     @property
     def contact_masses(self) -> tuple[float, float]:
@@ -91,112 +108,37 @@ class Case:
         return m1 * m2 / (m1 + m2)
 
 
+RECORD_PERIODS_MIN = 5.0
+"""A record must last at least this many times the longest natural period of the two buildings."""
+
+
+def _check_record_lengths(motions: RecordedMotions, buildings) -> None:
+    longest = max(float(building.periods[0]) for building in buildings)
+    for record in motions.records:
+        if record.duration < RECORD_PERIODS_MIN * longest:
+            raise CaseError(record.name, f"lasts {record.duration:.3g} s, under {RECORD_PERIODS_MIN:g} times the buildings' longest "
+                            f"period ({longest:.3g} s): its peak response is not reached; use a longer record")
+
+
 # --- loading -----------------------------------------------------------------
 # Every number is checked here as the file writes it, in the file's units, and
 # only then converted to SI: an error quotes the key and the value as written.
 
 _TOP_KEYS = {"units", "name", "description", "excitation", "buildings", "contact"}
-_EXCITATION_KEYS = {"spectrum", "G0", "omega_g", "xi_g", "omega_f", "xi_f", "duration", "envelope", "B1", "B2", "time_step", "cutoff_frequency", "synthesis_factor"}
 _BUILDING_KEYS = {"damping_ratio", "storeys"}
-_STOREY_KEYS = {"mass", "stiffness", "period", "damping", "bouc_wen"}
+_STOREY_KEYS = {"mass", "stiffness", "period", "damping", "bouc_wen", "hysteresis"}
 _BOUC_WEN_KEYS = {"alpha", "A", "beta", "gamma", "n"}
+_HYSTERESIS_KEYS = {"yield_drift", "yield_force", "post_yield_ratio", "n", "beta_share"}
 _CONTACT_KEYS = {"model", "gap", "stiffness", "restitution", "levels"}
-SPECTRA = ("kanai-tajimi", "clough-penzien")
-ENVELOPES = ("none", "shinozuka-sato")
-
-
-def _check_keys(table, allowed: set[str], where: str) -> None:
-    if not isinstance(table, Mapping):
-        raise CaseError(where or "case", f"must be a table, got {described(table)}")
-    for key in table:
-        if key not in allowed:
-            written = quote(key) if not isinstance(key, str) or len(key) > 40 else key
-            field = f"{where}.{written}" if where else written
-            raise CaseError(field, f"unknown key; allowed here: {', '.join(sorted(allowed))}")
-
-
-def _number(table, key: str, where: str, default=None) -> float:
-    value = table.get(key, default)
-    if value is None:
-        raise CaseError(f"{where}.{key}", "is required")
-    return finite_number(f"{where}.{key}", value)
-
-
-def _to_si(field: str, value: float, units: UnitSystem, **dimensions) -> float:
-    """``value``, written in ``units``, in SI; :class:`CaseError` if it leaves the floats."""
-    if value == 0.0:
-        return 0.0
-    try:
-        converted = units.to_si(value, **dimensions)
-    except OverflowError:
-        converted = math.inf
-    if not math.isfinite(converted) or converted == 0.0:
-        label = units.label(**dimensions)
-        raise CaseError(field, f"{value:g} {label} is beyond the range of numbers once in SI; give a value of sensible magnitude")
-    return converted
-
-
-def _quantity(table, key: str, where: str, units: UnitSystem, *, strict: bool, default=None, **dimensions) -> float:
-    """A dimensional number of the file: > 0 (``strict``) or >= 0, checked in
-    the file's units, then converted to SI."""
-    value = _number(table, key, where, default)
-    if not (value > 0 if strict else value >= 0):
-        label = units.label(**dimensions)
-        raise CaseError(f"{where}.{key}", f"must be {'>' if strict else '>='} 0 {label}, got {value:g} {label}")
-    return _to_si(f"{where}.{key}", value, units, **dimensions)
-
-
-def _build(where: str, constructor, *args, **kwargs):
-    """Call a dataclass constructor, placing its errors under ``where``."""
-    try:
-        return constructor(*args, **kwargs)
-    except CaseError as error:
-        raise error.under(where) from None
-
-
-def _name(table, key: str, allowed: tuple[str, ...], where: str, default: str) -> str:
-    value = table.get(key, default)
-    if not (isinstance(value, str) and value in allowed):
-        raise CaseError(f"{where}.{key}", f"unknown {key} {quote(value)}; allowed: {', '.join(allowed)}")
-    return value
-
-
-def _excitation(table, units: UnitSystem) -> Excitation:
-    where = "excitation"
-    _check_keys(table, _EXCITATION_KEYS, where)
-    spectrum_name = _name(table, "spectrum", SPECTRA, where, "kanai-tajimi")
-    G0 = _quantity(table, "G0", where, units, strict=False, length=2, time=-3)
-    omega_g, xi_g = _number(table, "omega_g", where), _number(table, "xi_g", where)
-    if spectrum_name == "kanai-tajimi":
-        for key in ("omega_f", "xi_f"):
-            if key in table:
-                raise CaseError(f"{where}.{key}", "applies to spectrum = 'clough-penzien' only")
-        spectrum = _build(where, KanaiTajimi, G0, omega_g, xi_g)
-    else:
-        spectrum = _build(
-            where, CloughPenzien, G0, omega_g, xi_g, _number(table, "omega_f", where, 2.0), _number(table, "xi_f", where, 0.6)
-        )
-    envelope_name = _name(table, "envelope", ENVELOPES, where, "none")
-    if envelope_name == "none":
-        for key in ("B1", "B2"):
-            if key in table:
-                raise CaseError(f"{where}.{key}", "applies to envelope = 'shinozuka-sato' only")
-        envelope = None
-    else:
-        envelope = _build(where, ShinozukaSato, _number(table, "B1", where, 0.085), _number(table, "B2", where, 0.17))
-    optional = {key: _number(table, key, where) for key in ("time_step", "cutoff_frequency") if key in table}
-    if "synthesis_factor" in table:
-        optional["synthesis_factor"] = table["synthesis_factor"]  # an integer; Excitation checks it
-    return _build(where, Excitation, spectrum, _number(table, "duration", where), envelope, **optional)
 
 
 def _bouc_wen(table, units: UnitSystem, where: str) -> BoucWen:
-    _check_keys(table, _BOUC_WEN_KEYS, where)
-    values = {key: _number(table, key, where, default) for key, default in (("alpha", 1.0), ("A", 1.0), ("beta", 0.0), ("gamma", 0.0), ("n", 1.0))}
-    as_written = _build(where, BoucWen, **values)  # checked in the file's units: beta, gamma are quoted as written
+    check_keys(table, _BOUC_WEN_KEYS, where)
+    values = {key: number(table, key, where, default) for key, default in (("alpha", 1.0), ("A", 1.0), ("beta", 0.0), ("gamma", 0.0), ("n", 1.0))}
+    as_written = build(where, BoucWen, **values)  # checked in the file's units: beta, gamma are quoted as written
     n = as_written.n  # beta, gamma multiply |z|^n: [1/length^n]
-    converted = {key: _to_si(f"{where}.{key}", values[key], units, length=-n) for key in ("beta", "gamma")}
-    return _build(where, dataclasses.replace, as_written, **converted)
+    converted = {key: to_si(f"{where}.{key}", values[key], units, length=-n) for key in ("beta", "gamma")}
+    return build(where, dataclasses.replace, as_written, **converted)
 
 
 def _from_period(where: str, period: float, mass: float | None, stiffness: float | None) -> tuple[float, float]:
@@ -211,53 +153,74 @@ def _from_period(where: str, period: float, mass: float | None, stiffness: float
     return mass, stiffness
 
 
+def _hysteresis(table, units: UnitSystem, where: str, stiffness: float) -> BoucWen:
+    """A storey's law from its yield drift or yield force (G28); lengths and forces in the file's units."""
+    check_keys(table, _HYSTERESIS_KEYS, where)
+    given = [key for key in ("yield_drift", "yield_force") if key in table]
+    if len(given) != 1:
+        raise CaseError(where, f"give one of yield_drift and yield_force; got {', '.join(given) or 'none'}")
+    if "post_yield_ratio" not in table:
+        raise CaseError(f"{where}.post_yield_ratio", "is required: the post-yield to initial stiffness ratio, in [0, 1)")
+    if given == ["yield_drift"]:
+        drift = quantity(table, "yield_drift", where, units, strict=True, length=1)
+    else:
+        drift = quantity(table, "yield_force", where, units, strict=True, force=1) / stiffness
+    options = {key: number(table, key, where) for key in ("post_yield_ratio", "n", "beta_share") if key in table}
+    return build(where, BoucWen.from_yield_drift, drift, **options)
+
+
 def _storey(table, units: UnitSystem, where: str, single: bool) -> Storey:
-    _check_keys(table, _STOREY_KEYS, where)
-    bouc_wen = _bouc_wen(table.get("bouc_wen", {"alpha": 1.0}), units, f"{where}.bouc_wen")
+    check_keys(table, _STOREY_KEYS, where)
+    if "bouc_wen" in table and "hysteresis" in table:
+        raise CaseError(f"{where}.hysteresis", "give bouc_wen or hysteresis, not both")
     given = [key for key in ("mass", "stiffness", "period") if key in table]
     if "period" in given and not single:
         raise CaseError(f"{where}.period", "applies to one-storey buildings only; give mass and stiffness per storey")
     if len(given) != 2:
         allowed = "mass and stiffness, or two of mass, stiffness and period" if single else "mass and stiffness"
         raise CaseError(where, f"give {allowed}; got {', '.join(given) or 'none'}")
-    mass = _quantity(table, "mass", where, units, strict=True, mass=1) if "mass" in table else None
-    stiffness = _quantity(table, "stiffness", where, units, strict=True, force=1, length=-1) if "stiffness" in table else None
+    mass = quantity(table, "mass", where, units, strict=True, mass=1) if "mass" in table else None
+    stiffness = quantity(table, "stiffness", where, units, strict=True, force=1, length=-1) if "stiffness" in table else None
     if "period" in table:
-        period = _number(table, "period", where)
+        period = number(table, "period", where)
         if period <= 0:
             raise CaseError(f"{where}.period", f"must be > 0 s, got {period:g} s")
         mass, stiffness = _from_period(where, period, mass, stiffness)
-    damping = _quantity(table, "damping", where, units, strict=False, force=1, length=-1, time=1) if "damping" in table else None
-    return _build(where, Storey, mass, stiffness, bouc_wen, damping)
+    damping = quantity(table, "damping", where, units, strict=False, force=1, length=-1, time=1) if "damping" in table else None
+    if "hysteresis" in table:
+        bouc_wen = _hysteresis(table["hysteresis"], units, f"{where}.hysteresis", stiffness)
+    else:
+        bouc_wen = _bouc_wen(table.get("bouc_wen", {"alpha": 1.0}), units, f"{where}.bouc_wen")
+    return build(where, Storey, mass, stiffness, bouc_wen, damping)
 
 
 def _building(table, units: UnitSystem, where: str) -> Building:
-    _check_keys(table, _BUILDING_KEYS, where)
+    check_keys(table, _BUILDING_KEYS, where)
     storeys = table.get("storeys")
     if not isinstance(storeys, list) or not storeys:
         raise CaseError(f"{where}.storeys", "at least one [[buildings.storeys]] table is required")
     check_storey_count(f"{where}.storeys", len(storeys))  # before any storey is read
     built = tuple(
-        _storey(storey, units, f"{where}.storeys.{number}", single=len(storeys) == 1)
-        for number, storey in enumerate(storeys, start=1)
+        _storey(storey, units, f"{where}.storeys.{index}", single=len(storeys) == 1)
+        for index, storey in enumerate(storeys, start=1)
     )
-    return _build(where, Building, built, _number(table, "damping_ratio", where, 0.05))
+    return build(where, Building, built, number(table, "damping_ratio", where, 0.05))
 
 
 def _contact(table, units: UnitSystem) -> Contact:
     where = "contact"
-    _check_keys(table, _CONTACT_KEYS, where)
+    check_keys(table, _CONTACT_KEYS, where)
     model = table.get("model", "jankowski")
     exponent = contact_law(model, f"{where}.model").stiffness_exponent
     levels = table.get("levels", [1, 1])
     if not isinstance(levels, list):
         raise CaseError(f"{where}.levels", f"must be two floor numbers [building 1, building 2], got {quote(levels)}")
-    return _build(
+    return build(
         where,
         Contact,
-        gap=_quantity(table, "gap", where, units, strict=False, length=1),
-        stiffness=_quantity(table, "stiffness", where, units, strict=True, force=1, length=-exponent),
-        restitution=_number(table, "restitution", where, 0.65),
+        gap=quantity(table, "gap", where, units, strict=False, length=1),
+        stiffness=quantity(table, "stiffness", where, units, strict=True, force=1, length=-exponent),
+        restitution=number(table, "restitution", where, 0.65),
         levels=levels,
         model=model,
     )
@@ -270,13 +233,15 @@ def _text(data, key: str, default: str) -> str:
     return value
 
 
-def case_from_dict(data: Mapping, name: str = "case") -> Case:
+def case_from_dict(data: Mapping, name: str = "case", base_directory: str | os.PathLike | None = None) -> Case:
     """Build a :class:`Case` from the parsed TOML schema (see README.md),
     converting to SI. Raises :class:`CaseError` naming the offending key as
-    the file writes it, and quoting the value in the file's units."""
+    the file writes it, and quoting the value in the file's units. Recorded
+    motions' paths are relative to ``base_directory`` (the current directory
+    by default; the case file's directory when loaded from a file)."""
     if not isinstance(data, Mapping):
         raise CaseError("case", f"must be the case file's table (a dict), got {described(data)}")
-    _check_keys(data, _TOP_KEYS, "")
+    check_keys(data, _TOP_KEYS, "")
     units = unit_system(data.get("units", SI.name))
     for key in ("excitation", "buildings", "contact"):
         if key not in data:
@@ -287,10 +252,12 @@ def case_from_dict(data: Mapping, name: str = "case") -> Case:
         raise CaseError("buildings", f"exactly two [[buildings]] tables are required, got {count}")
     if not isinstance(name, str):
         raise CaseError("name", f"must be a string, got {described(name)}")
-    return _build(
+    excitation, hazard = read_excitation(data["excitation"], units, Path(base_directory or "."))
+    return build(
         "",
         Case,
-        excitation=_excitation(data["excitation"], units),
+        excitation=excitation,
+        hazard=hazard,
         buildings=tuple(_building(b, units, f"buildings.{i}") for i, b in enumerate(buildings, start=1)),
         contact=_contact(data["contact"], units),
         name=_text(data, "name", name),
@@ -368,7 +335,7 @@ def load_case(source: str | os.PathLike | Mapping) -> Case:
             return case_from_dict(_parse(text, source), name=source)
     elif not isinstance(source, os.PathLike):
         raise CaseError("case", f"give a preset name, the path of a TOML file or the case file's table, got {described(source)}")
-    return case_from_dict(read_case_file(source), name=Path(source).stem)
+    return case_from_dict(read_case_file(source), name=Path(source).stem, base_directory=Path(source).parent)
 
 
 def as_case(value) -> Case:

@@ -48,10 +48,11 @@ def _simulate(args) -> int:
         check_probability(args.design_gap, "--design-gap")
     case = load_case(args.case)
     settings = Settings(tolerance=args.tolerance)
-    bar = _progress_bar(args.records, sys.stderr.isatty())
+    records, seed = _study_size(case, args)
+    bar = _progress_bar(records, sys.stderr.isatty())
     study = simulate if args.design_gap is None else partial(design_gap, target_probability=args.design_gap)
     try:
-        result = study(case, records=args.records, seed=args.seed, settings=settings,
+        result = study(case, records=records, seed=seed, settings=settings,
                        progress=(lambda done, total: bar.update(done - bar.n)) if bar else None)
     finally:
         if bar is not None:
@@ -60,8 +61,8 @@ def _simulate(args) -> int:
         closed_form, failure = estimate(case, target_probability=args.design_gap or defaults.TARGET_PROBABILITY), None
     except (ConvergenceError, ValueError, ArithmeticError) as error:  # CaseError, LinAlgError, overflow: the MC stands
         closed_form, failure = None, " ".join(str(error).split()) or type(error).__name__  # one line: why not
-    force_text = lambda n: _format_force(n) if abs(n) < 1e12 else f"{n / 1e6:.4g} MN"  # noqa: E731 (not 100 digits)
-    error_text = lambda f, r: f"{100 * (f / r - 1):+.1f} %" if abs(f / r - 1) <= 1e4 else f"{f / r:.3g} times"  # noqa: E731
+    force_text = lambda n: _format_force(n) if abs(n) < 1e12 else f"{n / 1e6:.4g} MN"
+    error_text = lambda f, r: f"{100 * (f / r - 1):+.1f} %" if abs(f / r - 1) <= 1e4 else f"{f / r:.3g} times"
     if args.design_gap is not None:
         return _print_design_gap(case, result, closed_form, failure, args)
     if args.json:
@@ -70,7 +71,7 @@ def _simulate(args) -> int:
         return 0
     low, high = result.force_max_confidence_interval
     print(f"case            {case.name}")
-    print(f"records         {result.n_records} x {case.excitation.duration:g} s, seed {args.seed}")
+    print(f"records         {_records_text(case, result.n_records, seed)}")
     if math.isfinite(result.force_max_std_error):
         print(f"mean F_max      {_format_force(result.force_max_mean)}  (standard error {_format_force(result.force_max_std_error)})")
         print(f"95% CI          {_format_force(low)} .. {_format_force(high)}")
@@ -99,6 +100,22 @@ def _simulate(args) -> int:
     return 0
 
 
+def _study_size(case, args) -> tuple[int, int]:
+    """The records and seed of a study: all recorded motions once (saying so if --records or --seed was given)."""
+    if case.recorded:
+        if args.records is not None or args.seed is not None:
+            print(f"pounding {args.command}: note: --records and --seed do not apply to recorded motions: each of the "
+                  f"{len(case.hazard.records)} is integrated once", file=sys.stderr)
+        return len(case.hazard.records), defaults.SEED
+    return args.records or defaults.RECORDS, defaults.SEED if args.seed is None else args.seed
+
+
+def _records_text(case, count: int, seed: int) -> str:
+    if case.recorded:
+        return f"{count} recorded motions ({case.hazard.scaling}), each over its own length"
+    return f"{count} x {case.excitation.duration:g} s, seed {seed}"
+
+
 def _closed_form_dict(closed_form) -> dict:
     """The closed form's numbers printed beside a Monte Carlo study (SI), with its warnings."""
     keys = ("force_expected", "pounding_probability", "impacts_expected", "accuracy_regime", "measured_accuracy")
@@ -113,7 +130,7 @@ def _print_design_gap(case, result, closed_form, failure, args) -> int:
         print(json.dumps({"case": case.name, **result.to_dict(), "closed_form_required_gap": required, **failed}))
         return 0
     print(f"case            {case.name}")
-    print(f"records         {result.n_records} x {case.excitation.duration:g} s, seed {args.seed} (free motion: the case's gap is not used)")
+    print(f"records         {_records_text(case, result.n_records, result.seed)} (free motion: the case's gap is not used)")
     bound = f"{100 * result.upper_bound:.2f} cm" if math.isfinite(result.upper_bound) else f"n/a: it needs {result.records_for_bound} records"
     print(f"gap for {100 * result.target_probability:g} % no pounding   {100 * result.gap:.2f} cm   (90 % confidence bound {bound})")
     if closed_form is None:
@@ -125,6 +142,8 @@ def _print_design_gap(case, result, closed_form, failure, args) -> int:
 
 def _estimate(args) -> int:
     from .case import load_case
+    from .cli_hazard import engineering_lines
+    from .engineering import engineering_terms
     from .estimator import estimate
 
     case = load_case(args.case)
@@ -135,10 +154,12 @@ def _estimate(args) -> int:
         return 0
     paper = result.paper
     rules = result.separation_rules
-    force_text = lambda n: _format_force(n) if abs(n) < 1e12 else f"{n / 1e6:.4g} MN"  # noqa: E731 (not 100 digits)
+    force_text = lambda n: _format_force(n) if abs(n) < 1e12 else f"{n / 1e6:.4g} MN"
     print(f"case                        {case.name} ({'stationary' if case.excitation.stationary else 'non-stationary'}, {case.excitation.duration:g} s)")
     print(f"gap                         {100 * case.contact.gap:{'.2f' if case.contact.gap < 1e4 else '.4g'}} cm")
     linearized = result.response
+    for line in engineering_lines(engineering_terms(case)):
+        print(line)
     print(f"sigma relative displacement {100 * result.sigma_relative_displacement:.3f} cm   "
           f"(linearized {100 * linearized.sigma_relative_displacement:.3f} cm, plus the residual's response)")
     print(f"sigma relative velocity     {result.sigma_relative_velocity:.4f} m/s   "
@@ -297,6 +318,12 @@ def _report(args) -> int:
     return 0
 
 
+def _records(args) -> int:
+    from .cli_hazard import records_command
+
+    return records_command(args)
+
+
 def _sweep(args) -> int:
     from . import sweeps
     from .errors import CaseError
@@ -314,6 +341,7 @@ _COMMANDS = {
     "validate": _validate,
     "sweep": _sweep,
     "report": _report,
+    "records": _records,
     "dashboard": _dashboard,
 }
 

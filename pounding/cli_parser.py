@@ -67,7 +67,7 @@ def parser() -> argparse.ArgumentParser:
     simulate = commands.add_parser(
         "simulate",
         help="Monte Carlo time-history analysis (the 'exact' method)",
-        description="Nonlinear time-history analysis of the case over N seeded synthetic records; "
+        description="Nonlinear time-history analysis of the case over N seeded synthetic records (or each of its recorded motions once); "
         "prints the mean extreme pounding force with its standard error and 95 % confidence interval, and beside it "
         "the closed-form estimates with their error against this study and the accuracy measured in the estimate's regime.",
         epilog="examples:\n  pounding simulate section5-T2-0.4 --records 300 --seed 1\n"
@@ -76,8 +76,9 @@ def parser() -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     simulate.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
-    simulate.add_argument("--records", type=record_count, default=defaults.RECORDS, help=f"number of records (default {defaults.RECORDS})")
-    simulate.add_argument("--seed", type=_non_negative_int, default=defaults.SEED, help=f"seed of the study (default {defaults.SEED})")
+    simulate.add_argument("--records", type=record_count, default=None,
+                          help=f"number of records (default {defaults.RECORDS}; a case of recorded motions integrates each of them once)")
+    simulate.add_argument("--seed", type=_non_negative_int, default=None, help=f"seed of the study (default {defaults.SEED})")
     simulate.add_argument("--tolerance", type=tolerance, default=defaults.INTEGRATOR_TOLERANCE,
                           help=f"relative tolerance of the integrator (default {defaults.INTEGRATOR_TOLERANCE:g})")
     simulate.add_argument("--json", action="store_true", help="print one JSON object (SI units) instead of a table")
@@ -105,6 +106,22 @@ def parser() -> argparse.ArgumentParser:
                           "stationary process, Eq. 29, in [{:g}, {:g}] (default {:g}, as the paper)".format(
                               *defaults.MICHAELOV_N1_RANGE, defaults.MICHAELOV_N1))
     estimate.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+
+    records = commands.add_parser(
+        "records",
+        help="write the ground-motion records simulate integrates (PEER .AT2 or CSV)",
+        description="Write exactly the records 'pounding simulate CASE --records N --seed S' integrates (synthetic, "
+        "or the case's recorded motions as scaled), one file per record with sorted names, acceleration in g.",
+        epilog="examples:\n  pounding records section5-T2-0.4 --records 20 --seed 1 -o motions/\n"
+        "  pounding records case.toml --records 5 -o motions/ --format csv",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    records.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
+    records.add_argument("--records", type=record_count, default=None, help="number of records (not for recorded motions: all are written)")
+    records.add_argument("--seed", type=_non_negative_int, default=None, help=f"seed of the study (default {defaults.SEED})")
+    records.add_argument("-o", "--output", required=True, help="folder to write them to (made if missing)")
+    records.add_argument("--format", choices=("at2", "csv"), default="at2", help="PEER NGA .AT2 (default) or two-column CSV (time s, acceleration g)")
+    records.add_argument("--json", action="store_true", help="print one JSON object naming the files")
 
     validate = commands.add_parser(
         "validate",

@@ -20,6 +20,7 @@ import numpy as np
 from . import defaults
 from .case import Case, as_case
 from .contact import peak_force_ratio
+from .engineering import engineering_terms
 from .errors import CaseError, check_limit, check_probability
 from .gap_aware import (
     Crossings,
@@ -177,6 +178,8 @@ class Estimate:
         if not self.case.excitation.stationary:
             out["paper"]["sigma_relative_velocity_equivalent"] = paper.sigma_relative_velocity_equivalent
             out["paper"]["michaelov_n1"] = paper.michaelov_n1
+        out.update(engineering_terms(self.case))
+        out["units"]["acceleration"] = "m/s^2"
         return out
 
 

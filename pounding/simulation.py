@@ -15,7 +15,6 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import (  # binomial CDF, Student t quantile; scipy.stats costs a second to import
     bdtr,
-    stdtrit,
 )
 
 from . import defaults
@@ -29,7 +28,14 @@ from .errors import (
     finite_number,
     quote,
 )
-from .excitation import ground_accelerations
+from .ground_motion import (
+    check_suite_range,
+    ground_motion_batches,
+    record_names,
+    samples_per_record,
+    suite_size,
+)
+from .monte_carlo_result import SimulationResult
 from .system import (
     Cancelled,
     Settings,
@@ -52,108 +58,9 @@ __all__ = [
     "simulate_record",
 ]
 
-@dataclass(frozen=True)
-class SimulationResult:
-    """Per-record peaks of a Monte Carlo study, and their summary.
-
-    All arrays have one entry per record, in record order.
-
-    Attributes
-    ----------
-    force_max : ndarray
-        Extreme pounding force max_t |F(t)| [N], Eq. 11 (0 without pounding).
-    impacts : ndarray
-        Number of impacts.
-    penetration_max : ndarray
-        Peak penetration [m].
-    impact_velocity_max : ndarray
-        Largest approach velocity at the onset of an impact [m/s].
-    displacement_max : ndarray, shape (records, 2)
-        Peak |displacement| of the contact floor of building 1 and 2 [m].
-    relative_displacement_max : ndarray
-        Peak of X = x1 - x2 at the contact floors over the accepted steps [m].
-    steps : ndarray
-        Accepted integration steps.
-    """
-
-    case: Case
-    seed: int
-    indices: np.ndarray
-    force_max: np.ndarray
-    impacts: np.ndarray
-    penetration_max: np.ndarray
-    impact_velocity_max: np.ndarray
-    displacement_max: np.ndarray
-    relative_displacement_max: np.ndarray
-    steps: np.ndarray
-    settings: Settings
-
-    @property
-    def n_records(self) -> int:
-        return self.force_max.size
-
-    @property
-    def force_max_mean(self) -> float:
-        """Mean extreme pounding force over all records [N] (records without
-        pounding count as 0)."""
-        return float(np.mean(self.force_max))
-
-    @property
-    def force_max_std_error(self) -> float:
-        """Standard error of ``force_max_mean`` [N]."""
-        if self.n_records < 2:
-            return math.inf
-        return float(np.std(self.force_max, ddof=1) / math.sqrt(self.n_records))
-
-    @property
-    def force_max_confidence_interval(self) -> tuple[float, float]:
-        """95 % confidence interval of the mean extreme force (Student t) [N]."""
-        if self.n_records < 2:
-            return (-math.inf, math.inf)
-        half = stdtrit(self.n_records - 1, 0.975) * self.force_max_std_error
-        return (self.force_max_mean - half, self.force_max_mean + half)
-
-    @property
-    def pounding_fraction(self) -> float:
-        """Fraction of records with at least one impact [-]."""
-        return float(np.mean(self.impacts > 0))
-
-    @property
-    def impacts_mean(self) -> float:
-        """Mean number of impacts per record."""
-        return float(np.mean(self.impacts))
-
-    def to_dict(self) -> dict:
-        """JSON-ready summary and per-record values, SI units."""
-        low, high = self.force_max_confidence_interval
-        return {
-            "case": self.case.name,
-            "seed": self.seed,
-            "records": self.n_records,
-            "duration": self.case.excitation.duration,
-            "force_max_mean": self.force_max_mean,
-            # One record has no standard error: null, not JSON's non-standard Infinity.
-            "force_max_std_error": _finite_or_none(self.force_max_std_error),
-            "force_max_ci95": [_finite_or_none(low), _finite_or_none(high)],
-            "pounding_fraction": self.pounding_fraction,
-            "impacts_mean": self.impacts_mean,
-            "force_max": self.force_max.tolist(),
-            "impacts": self.impacts.astype(int).tolist(),
-            "penetration_max": self.penetration_max.tolist(),
-            "impact_velocity_max": self.impact_velocity_max.tolist(),
-            "displacement_max": self.displacement_max.tolist(),
-            "relative_displacement_max": self.relative_displacement_max.tolist(),
-            "units": {"force": "N", "length": "m", "velocity": "m/s", "duration": "s"},
-        }
-
-
-def _finite_or_none(value: float) -> float | None:
-    return float(value) if math.isfinite(value) else None
-
-
 def simulate(
     case: Case,
-    records: int = defaults.RECORDS,
+    records: int | None = None,
     seed: int = defaults.SEED,
     settings: Settings | None = None,
     progress: Callable[[int, int], None] | None = None,
@@ -164,13 +71,16 @@ def simulate(
 
     Records ``first_record .. first_record + records - 1`` of the study seeded
     ``seed`` are generated (``excitation.record_rng``) and integrated on
-    ``settings.n_workers`` threads.
+    ``settings.n_workers`` threads. A case of recorded motions integrates its
+    accelerograms (all of them by default, in the sorted order of their file
+    names); ``seed`` does not apply.
 
     Parameters
     ----------
     case : Case, or a preset name or the path of a TOML file
-    records : int
-        Number of records, at most ``defaults.MAX_RECORDS`` (1,000,000).
+    records : int, optional
+        Number of records, at most ``defaults.MAX_RECORDS`` (1,000,000);
+        ``defaults.RECORDS`` (the whole suite of a recorded case) when None.
     seed : int
         Seed of the study; the same case and seed give the same numbers.
     settings : Settings, optional
@@ -191,10 +101,12 @@ def simulate(
         When a record's integration fails; names the record and the time.
     """
     case, settings = check_study(case, settings, progress, cancel)
+    if records is None:
+        records = suite_size(case) or defaults.RECORDS
     records, seed, first_record = check_records(records, seed, first_record)
-    excitation = case.excitation
+    check_suite_range(case, records, first_record)
     # the records of one chunk are held at once by a thread: checked before they are drawn
-    check_limit("chunk_size", min(settings.chunk_size, records) * excitation.n_samples, defaults.MAX_CHUNK_SAMPLES,
+    check_limit("chunk_size", min(settings.chunk_size, records) * samples_per_record(case), defaults.MAX_CHUNK_SAMPLES,
                 "samples held per thread (chunk_size x samples per record)", "lower Settings.chunk_size")
     system = kernel_system(case, settings)
     y0 = np.zeros(3 * system.n_floors)
@@ -205,12 +117,13 @@ def simulate(
     def run(chunk: slice) -> slice:
         if cancel is not None and cancel.is_set():
             return chunk
-        accelerations = ground_accelerations(excitation, seed, indices[chunk])
-        kernel.integrate_batch(
-            accelerations, excitation.time_step, y0, system.floors, system.below, system.contact,
-            system.floor_1, system.floor_2, settings.tolerance, system.atol, settings.displacement_limit,
-            summaries[chunk],
-        )
+        rows = summaries[chunk]
+        for batch, accelerations, time_step in ground_motion_batches(case, seed, indices[chunk]):
+            kernel.integrate_batch(
+                accelerations, time_step, y0, system.floors, system.below, system.contact,
+                system.floor_1, system.floor_2, settings.tolerance, system.atol, settings.displacement_limit,
+                rows[batch],
+            )
         return chunk
 
     done = 0
@@ -224,7 +137,7 @@ def simulate(
                 failed = np.flatnonzero(summaries[chunk, kernel.S_STATUS] != kernel.OK)
                 if failed.size:
                     row = chunk.start + failed[0]
-                    raise failure(summaries[row], f"record {indices[row]} (seed {seed})", settings)
+                    raise failure(summaries[row], record_names(case, seed, [indices[row]])[0], settings)
                 done += chunk.stop - chunk.start
                 if progress is not None:
                     progress(done, records)
@@ -493,6 +406,7 @@ def simulate_record(case: Case, seed: int = defaults.SEED, index: int = 0, setti
     (the same record ``simulate`` integrates under that index)."""
     case, settings = check_study(case, settings, None, None)
     _, seed, index = check_records(1, seed, index)
-    _check_history("excitation.duration", case.excitation.n_samples, 3 * sum(b.n_storeys for b in case.buildings))
-    record = ground_accelerations(case.excitation, seed, [index])[0]
-    return _integrate(case, record, case.excitation.time_step, None, settings, f"record {index} (seed {seed})", "excitation.duration")
+    check_suite_range(case, 1, index)
+    _check_history("excitation.duration", samples_per_record(case), 3 * sum(b.n_storeys for b in case.buildings))
+    _, records, time_step = next(ground_motion_batches(case, seed, [index]))
+    return _integrate(case, records[0], time_step, None, settings, record_names(case, seed, [index])[0], "excitation.duration")

@@ -75,6 +75,30 @@ class BoucWen:
         """(A / (beta + gamma))^(1/n) [m], Eq. 33: the bound of |z|."""
         return (self.A / (self.beta + self.gamma)) ** (1.0 / self.n)
 
+    @classmethod
+    def from_yield_drift(cls, yield_drift: float, post_yield_ratio: float, n: float = 1.0, beta_share: float = 0.5) -> BoucWen:
+        """The Bouc-Wen law of a storey given as an engineer gives it (docs/theory.md, G28):
+        A = 1, beta + gamma = 1 / yield_drift^n (so Eq. 33's yield displacement is
+        ``yield_drift`` [m]), beta = beta_share (beta + gamma), alpha = post_yield_ratio.
+        ``beta_share`` >= 0.5 (beta >= gamma): 0.5 gives gamma = beta, 1 gives gamma = 0, and above 1
+        gamma < 0 (the paper's beta = 2, gamma = -1 is beta_share = 2)."""
+        yield_drift = finite_number("yield_drift", yield_drift)
+        if not yield_drift > 0:
+            raise CaseError("yield_drift", f"must be > 0 m, got {yield_drift:g}")
+        share = finite_number("beta_share", beta_share)
+        if not share >= 0.5:
+            raise CaseError("beta_share", f"must be >= 0.5 (beta >= gamma, else unloading softens), got {share:g}")
+        ratio = finite_number("post_yield_ratio", post_yield_ratio)
+        if not 0.0 <= ratio < 1.0:
+            raise CaseError("post_yield_ratio", f"must lie in [0, 1) (1 would never yield), got {ratio:g}")
+        n = finite_number("n", n)
+        if not n >= 1:
+            raise CaseError("n", f"must be >= 1, got {n:g}")
+        total = yield_drift ** -n
+        if not (math.isfinite(total) and total > 0):
+            raise CaseError("yield_drift", f"{yield_drift:g} m to the power {n:g} leaves the range of numbers")
+        return cls(alpha=ratio, A=1.0, beta=share * total, gamma=(1.0 - share) * total, n=n)
+
 
 @dataclass(frozen=True)
 class Storey:
@@ -111,6 +135,21 @@ class Storey:
             _set(self, damping=finite_number("damping", self.damping))
             if not self.damping >= 0:
                 raise CaseError("damping", f"must be >= 0 N*s/m, got {self.damping:g}")
+
+    @property
+    def yields(self) -> bool:
+        """Whether the storey has a hysteretic part (alpha < 1)."""
+        return self.bouc_wen.alpha < 1.0
+
+    @property
+    def yield_drift(self) -> float:
+        """The storey's yield drift [m] (Eq. 33); inf for an elastic storey."""
+        return self.bouc_wen.yield_displacement if self.yields else math.inf
+
+    @property
+    def yield_force(self) -> float:
+        """stiffness x yield drift [N]; inf for an elastic storey."""
+        return self.stiffness * self.yield_drift if self.yields else math.inf
 
 
 @dataclass(frozen=True)

@@ -263,6 +263,7 @@ def check_frequencies(case) -> None:
              for b, building in enumerate(case.buildings, start=1) for s, storey in enumerate(building.storeys, start=1)]
     spectrum = case.excitation.spectrum
     found += [(f"excitation.{key}", getattr(spectrum, key)) for key in ("omega_g", "omega_f") if hasattr(spectrum, key)]
+    found += [(f"excitation.frequencies.{k}", w) for k, w in enumerate(getattr(spectrum, "frequencies", ()), start=1)]
     for where, frequency in found:
         if not low <= frequency <= high:
             raise ConvergenceError(f"{where} = {frequency:.3g} rad/s lies outside {low:g} to {high:g} rad/s, "

@@ -10,11 +10,13 @@ from datetime import datetime, timezone
 from pathlib import Path
 
 from ..case import Case
+from ..filter_bank import FilterBank
 from ..output import check_target, write_atomic
 from ..regimes import accuracy_data
 from .card import RESULT_CSS, result_html
 from .display_units import display
 from .figures import Figures
+from .hazard_section import hazard_figure, storeys_table
 from .snapshot import Snapshot, compute_snapshot
 
 # --- the static report ---------------------------------------------------------
@@ -82,13 +84,25 @@ def _case_table(case: Case, units: str) -> str:
         f"stiffness {u.from_si(c.stiffness, force=1, length=-exponent):.4g} {u.force_label}/{u.length_label}^{exponent:g}, "
         f"restitution {c.restitution:g}, levels {c.levels[0]} and {c.levels[1]}</td></tr>"
     )
-    s = case.excitation.spectrum
-    envelope = "stationary" if case.excitation.stationary else f"Shinozuka-Sato envelope (B1 = {case.excitation.envelope.B1:g}, B2 = {case.excitation.envelope.B2:g})"
-    rows.append(
-        f"<tr><th>excitation</th><td>{type(s).__name__}: G0 = {u.from_si(s.G0, length=2):.4g} {u.length_label}^2/s^3, "
-        f"omega_g = {s.omega_g:g} rad/s, xi_g = {s.xi_g:g}; duration {case.excitation.duration:g} s, {envelope}</td></tr>"
-    )
+    rows.append(f"<tr><th>excitation</th><td>{_excitation_text(case, u)}</td></tr>")
     return '<table class="case-table">' + "".join(rows) + "</table>"
+
+
+def _excitation_text(case: Case, u) -> str:
+    """The excitation in one line, whatever its form."""
+    excitation, s = case.excitation, case.excitation.spectrum
+    envelope = "stationary" if excitation.stationary else f"Shinozuka-Sato envelope (B1 = {excitation.envelope.B1:g}, B2 = {excitation.envelope.B2:g})"
+    if isinstance(s, FilterBank):
+        target = html.escape(case.hazard.target.describe()) if case.hazard is not None else "a filter bank"
+        return (f"design spectrum {target}, as a compatible bank of {len(s.frequencies)} band-pass filtered white noises (the same PSD "
+                f"for both methods); duration {excitation.duration:g} s, {envelope}")
+    shape = f"{type(s).__name__}: G0 = {u.from_si(s.G0, length=2):.4g} {u.length_label}^2/s^3, omega_g = {s.omega_g:.4g} rad/s, xi_g = {s.xi_g:.4g}"
+    if case.recorded:
+        fitted = case.hazard.fitted
+        return (f"{len(case.hazard.records)} recorded motions ({html.escape(case.hazard.scaling)}): "
+                f"{html.escape(', '.join(case.hazard.names[:5]))}{', ...' if len(case.hazard.records) > 5 else ''}; "
+                f"the closed form takes a fitted {shape} over {fitted.duration:.3g} s ({html.escape(fitted.duration_definition)})")
+    return f"{shape}; duration {excitation.duration:g} s, {envelope}"
 
 
 def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None) -> str:
@@ -114,6 +128,8 @@ def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None)
             f"<p>{html.escape(case.description)}</p>"
             f'<p class="report-note"><i>{REPORT_NOTE}</i> Written {stamp} by pounding.</p>'
             + _case_table(case, units)
+            + "<h2>Ground motion and storeys</h2>"
+            + storeys_table(case, units, snapshot.estimate.to_dict())
             + "<h2>Result</h2>"
             + result_html(snapshot, units, matching[-1] if matching else None, "not run for this report", snapshot.design_gap)
             + f"<p>{history_note}</p>"
@@ -122,8 +138,10 @@ def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None)
     )
     figures = Figures()
     figures.fill(snapshot, units, snapshot.monte_carlo, snapshot.design_gap)
+    hazard = hazard_figure(case, snapshot.seed)
     layout = column(
         header,
+        *([hazard] if hazard is not None else []),
         figures.gap,
         row(figures.psd_ground, figures.psd_velocity, sizing_mode="stretch_width"),
         row(*figures.hysteresis, sizing_mode="stretch_width"),

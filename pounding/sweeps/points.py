@@ -33,12 +33,23 @@ def case_data(case) -> tuple[dict, str]:
     if isinstance(case, (str, os.PathLike)):
         from ..case import read_case_file  # checks the file: size, encoding, TOML
 
-        return read_case_file(case), Path(case).stem
+        return _records_from(read_case_file(case), Path(case).parent), Path(case).stem
     raise CaseError(
         "case",
         f"give a preset name, a TOML file or the parsed case file as a dict (--vary paths are keys of the file), "
         f"got {type(case).__name__}",
     )
+
+
+def _records_from(data: dict, folder: Path) -> dict:
+    """The case file with its recorded motions' paths made absolute: the workers read them from anywhere."""
+    excitation = data.get("excitation")
+    patterns = excitation.get("records") if isinstance(excitation, dict) else None
+    if isinstance(patterns, str):
+        patterns = [patterns]
+    if isinstance(patterns, list) and all(isinstance(p, str) for p in patterns):
+        excitation["records"] = [str(folder.resolve() / p) if not Path(p).is_absolute() else p for p in patterns]
+    return data
 
 
 def _set_path(data: dict, path: str, value: float) -> None:

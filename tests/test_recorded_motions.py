@@ -1,0 +1,150 @@
+"""Recorded motions in a case, the PGA form of a spectrum and `pounding records`: the same records give
+the same numbers whichever way they reach the integrator."""
+
+import json
+import math
+import textwrap
+
+import numpy as np
+import pytest
+
+from pounding import CaseError, load_case, simulate
+from pounding.accelerograms import Accelerogram, read_accelerogram, write_at2
+from pounding.cli import main
+from pounding.excitation import ground_accelerations
+from pounding.ground_peaks import expected_peak_ground_acceleration
+from pounding.presets import preset_text
+from pounding.units import STANDARD_GRAVITY
+
+PRESET = "section5-T2-0.4"
+
+
+def _with_excitation(table: str) -> str:
+    text = preset_text(PRESET)
+    start, end = text.index("[excitation]"), text.index("[[buildings]]")
+    return text[:start] + textwrap.dedent(table) + "\n" + text[end:]
+
+
+@pytest.fixture(scope="module")
+def suite(tmp_path_factory):
+    """Six synthetic records of the preset (seed 5) written as files, and a case reading them."""
+    folder = tmp_path_factory.mktemp("suite")
+    (folder / "motions").mkdir()
+    excitation = load_case(PRESET).excitation
+    records = ground_accelerations(excitation, 5, range(6))
+    for index, record in enumerate(records):
+        write_at2(folder / "motions" / f"m{index}.AT2", Accelerogram(f"m{index}", excitation.time_step, record))
+    (folder / "case.toml").write_text(_with_excitation('[excitation]\nrecords = ["motions/*.AT2"]\n'))
+    return folder, records
+
+
+def test_simulating_the_files_integrates_the_records_as_synthesized(suite):
+    folder, records = suite
+    case = load_case(folder / "case.toml")
+    assert case.recorded and [r.name for r in case.hazard.records] == [f"motions/m{i}.AT2" for i in range(6)]
+    from_files = simulate(case)
+    synthetic = simulate(PRESET, records=6, seed=5)
+    # the files hold 8 significant digits: the forces agree to about that
+    np.testing.assert_allclose(from_files.force_max, synthetic.force_max, rtol=1e-5)
+    assert from_files.to_dict()["seed"] is None and len(from_files.to_dict()["record_files"]) == 6
+
+
+def test_the_closed_form_takes_the_fitted_spectrum(suite, capsys):
+    folder, _ = suite
+    assert main(["estimate", str(folder / "case.toml"), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    fitted = out["fitted_excitation"]
+    assert fitted["spectrum"] in ("kanai-tajimi", "clough-penzien")
+    assert "Arias" in fitted["duration_definition"] and 0.8 * 20 < fitted["duration"] < 20
+    assert out["record_files"][0] == "motions/m0.AT2"
+    # six stationary records of the preset: omega_g of the preset's soil comes back roughly
+    assert fitted["omega_g"] == pytest.approx(27.02, rel=0.25)
+
+
+def test_simulate_says_records_and_seed_do_not_apply(suite, capsys):
+    folder, _ = suite
+    assert main(["simulate", str(folder / "case.toml"), "--records", "3", "--json"]) == 0
+    captured = capsys.readouterr()
+    assert "do not apply" in captured.err and len(json.loads(captured.out)["force_max"]) == 6
+
+
+def test_pounding_records_writes_what_simulate_integrates(tmp_path, capsys):
+    assert main(["records", PRESET, "--records", "3", "--seed", "7", "-o", str(tmp_path / "out")]) == 0
+    files = sorted((tmp_path / "out").glob("*.AT2"))
+    assert [f.name for f in files] == ["record-0.AT2", "record-1.AT2", "record-2.AT2"]
+    excitation = load_case(PRESET).excitation
+    expected = ground_accelerations(excitation, 7, range(3))
+    for file, record in zip(files, expected):
+        read = read_accelerogram(file)
+        assert read.time_step == excitation.time_step
+        np.testing.assert_allclose(read.acceleration, record, atol=1e-7 * np.abs(record).max())
+    assert main(["records", PRESET, "--records", "2", "-o", str(tmp_path / "csv"), "--format", "csv"]) == 0
+    assert len(list((tmp_path / "csv").glob("*.csv"))) == 2
+
+
+def test_records_bad_arguments_exit_2(capsys, tmp_path):
+    assert main(["records", PRESET, "-o", str(tmp_path)]) == 2
+    assert "--records" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as caught:  # argparse: a count below 1
+        main(["records", PRESET, "--records", "0", "-o", str(tmp_path)])
+    assert caught.value.code == 2 and "--records" in capsys.readouterr().err
+    (tmp_path / "file").write_text("")
+    assert main(["records", PRESET, "--records", "1", "-o", str(tmp_path / "file")]) == 2
+    assert "--output" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    "table, field",
+    [
+        ('[excitation]\nrecords = ["nothing/*.AT2"]\n', "excitation.records.nothing/*.AT2"),
+        ('[excitation]\nrecords = []\n', "excitation.records"),
+        ('[excitation]\nrecords = ["motions/*.AT2"]\nscale = 2\npga = 0.3\n', "excitation.pga"),
+        ('[excitation]\nrecords = ["motions/*.AT2"]\nduration = 20\n', "excitation.duration"),
+    ],
+)
+def test_bad_record_keys_name_the_key(suite, table, field):
+    folder, _ = suite
+    path = folder / "bad.toml"
+    path.write_text(_with_excitation(table))
+    with pytest.raises(CaseError) as caught:
+        load_case(path)
+    assert caught.value.field == field
+
+
+def test_a_record_shorter_than_five_periods_is_refused(tmp_path):
+    short = Accelerogram("short", 0.005, np.sin(np.arange(1000) * 0.05))  # 5 s against T1 = 1.2 s
+    write_at2(tmp_path / "short.AT2", short)
+    (tmp_path / "case.toml").write_text(_with_excitation('[excitation]\nrecords = ["short.AT2"]\n'))
+    with pytest.raises(CaseError) as caught:
+        load_case(tmp_path / "case.toml")
+    assert caught.value.field == "short.AT2" and "5 times" in caught.value.message
+
+
+def test_scaling_each_record_to_a_pga(suite):
+    folder, records = suite
+    path = folder / "pga.toml"
+    path.write_text(_with_excitation('[excitation]\nrecords = ["motions/*.AT2"]\npga = 0.25\n'))
+    case = load_case(path)
+    for record in case.hazard.records:
+        assert record.peak == pytest.approx(0.25 * STANDARD_GRAVITY, rel=1e-12)
+
+
+@pytest.mark.parametrize("envelope", ["", 'envelope = "shinozuka-sato"\n'])
+def test_the_pga_form_gives_records_of_that_mean_peak(tmp_path, envelope):
+    """G0 chosen for an expected PGA of 0.3 g: the mean peak of 200 records is within 3 % of it."""
+    path = tmp_path / "case.toml"
+    path.write_text(_with_excitation(f'[excitation]\nspectrum = "kanai-tajimi"\npga = 0.3\nomega_g = 27.02\nxi_g = 0.34\n'
+                                     f'duration = 20.0\n{envelope}'))
+    excitation = load_case(path).excitation
+    assert expected_peak_ground_acceleration(excitation) == pytest.approx(0.3 * STANDARD_GRAVITY, rel=1e-9)
+    peaks = np.abs(ground_accelerations(excitation, 11, range(200))).max(axis=1)
+    assert peaks.mean() == pytest.approx(0.3 * STANDARD_GRAVITY, rel=0.03)
+    assert math.isfinite(excitation.spectrum.G0)
+
+
+def test_pga_and_g0_together_are_refused(tmp_path):
+    path = tmp_path / "case.toml"
+    path.write_text(_with_excitation('[excitation]\nG0 = 65.03\npga = 0.3\nomega_g = 27.02\nxi_g = 0.34\nduration = 20.0\n'))
+    with pytest.raises(CaseError) as caught:
+        load_case(path)
+    assert caught.value.field == "excitation" and "G0 and pga" in caught.value.message
