@@ -100,7 +100,7 @@ def _process(table, units: UnitSystem, name: str) -> Excitation:
                          number(table, "omega_f", _WHERE, 2.0), number(table, "xi_f", _WHERE, 0.6))
     excitation = build(_WHERE, Excitation, spectrum, number(table, "duration", _WHERE), _envelope(table), **_sampling(table))
     if "pga" in table:
-        from .ground_peaks import intensity_for_peak_ground_acceleration
+        from .peak_factors import intensity_for_peak_ground_acceleration
 
         intensity = intensity_for_peak_ground_acceleration(excitation, _in_g(table, "pga"))
         excitation = build(_WHERE, Excitation, build(_WHERE, type(spectrum), intensity, *_shape(spectrum)),

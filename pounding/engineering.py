@@ -38,7 +38,7 @@ def storey_terms(case: Case) -> list[dict]:
 def ground_motion_terms(case: Case) -> dict:
     """The excitation's expected peak and RMS ground acceleration [m/s^2] (of its records, below the cutoff), its source,
     and for recorded motions the records' own mean peak."""
-    from .ground_peaks import expected_peak_ground_acceleration, rms_acceleration
+    from .peak_factors import expected_peak_ground_acceleration, rms_acceleration
 
     excitation = case.excitation
     source = ("recorded motions" if case.recorded else f"design spectrum ({case.hazard.code})"

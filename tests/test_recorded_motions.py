@@ -12,7 +12,7 @@ from pounding import CaseError, load_case, simulate
 from pounding.accelerograms import Accelerogram, read_accelerogram, write_at2
 from pounding.cli import main
 from pounding.excitation import ground_accelerations
-from pounding.ground_peaks import expected_peak_ground_acceleration
+from pounding.peak_factors import expected_peak_ground_acceleration
 from pounding.presets import preset_text
 from pounding.units import STANDARD_GRAVITY
 
