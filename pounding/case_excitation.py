@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from . import defaults
 from .case_fields import build, check_keys, choice, number, quantity, text_list
 from .errors import CaseError, quote
 from .excitation import CloughPenzien, Excitation, KanaiTajimi, ShinozukaSato
@@ -147,7 +148,7 @@ def _design(table):
     check_keys(table, _DESIGN_KEYS | _CODE_KEYS[code], _WHERE)
     target = _design_target(table, code)
     envelope = _envelope(table)
-    sampling = _sampling(table)
+    sampling = {"synthesis_factor": defaults.DESIGN_SYNTHESIS_FACTOR, **_sampling(table)}
     duration = number(table, "duration", _WHERE)
     # checked first: a bad duration or time step is named before the PSD is computed
     probe = build(_WHERE, Excitation, KanaiTajimi(1.0, 10.0, 0.5), duration, envelope, **sampling)

@@ -35,8 +35,10 @@ _METHOD_NOTES = """
 <ul class="method-notes">
 <li><b>Buildings.</b> Shear buildings with a Bouc-Wen law in every storey (Rahimi &amp; Soltani 2016, Eq. 1-2, 36-39);
 damping c = 2 xi sqrt(k m) for one storey, stiffness-proportional on the first mode for more.</li>
-<li><b>Ground motion.</b> Gaussian records with the Kanai-Tajimi spectrum (Eq. 7), optionally modulated by the
-Shinozuka-Sato envelope (Eq. 8-9), by spectral representation; record i of a study is seeded on its own.</li>
+<li><b>Ground motion.</b> Gaussian records of the case's spectrum (Kanai-Tajimi, Eq. 7; Clough-Penzien; or, for a design
+spectrum, a compatible bank of band-pass filtered white noises that both methods use), optionally modulated by the
+Shinozuka-Sato envelope (Eq. 8-9), by spectral representation; record i of a study is seeded on its own. Recorded
+motions are integrated as sampled, each once, and the closed form takes a spectrum fitted to them.</li>
 <li><b>Contact.</b> Jankowski's nonlinear viscoelastic law (Eq. 3-5) with the impact damping
 2 xi sqrt(beta sqrt(delta) m1 m2/(m1+m2)) (Eq. 4 as printed is dimensionally inconsistent).</li>
 <li><b>Monte Carlo ("exact").</b> Nonlinear time histories (Eq. 10-11) integrated with an error-controlled
