@@ -80,3 +80,37 @@ def test_the_user_guide_python_examples_run():
         for block in blocks:
             exec(compile(block, "docs/user-guide.md", "exec"), namespace)
     assert blocks and namespace["curve"].force_expected.size == 101 and "nan" not in out.getvalue().lower()
+
+
+def test_the_readme_hazard_forms_load(tmp_path):
+    """The README's design-spectrum, recorded-motion and PGA excitations and its yield-drift storey, each
+    put into the Section 5 case as written, load (the recorded motions from two files written here)."""
+    import tomllib
+
+    from pounding.accelerograms import Accelerogram, write_at2, write_csv
+    from pounding.case import load_case
+    from pounding.excitation import ground_accelerations
+    from pounding.presets import preset_text
+
+    section = README.split("### The hazard and the storeys as an engineer gives them")[1].split("\n## ")[0]
+    blocks = re.findall(r"```toml\n(.*?)```", section, re.S)
+    assert len(blocks) == 3
+    base = preset_text("section5-T2-0.4")
+    excitation = load_case("section5-T2-0.4").excitation
+    (tmp_path / "motions").mkdir()
+    records = ground_accelerations(excitation, 1, range(2))
+    write_at2(tmp_path / "motions" / "a.AT2", Accelerogram("a", excitation.time_step, records[0]))
+    write_csv(tmp_path / "other.csv", Accelerogram("b", excitation.time_step, records[1]))
+    for block in blocks:
+        table, _, storey = block.partition("[[buildings.storeys]]")
+        start, end = base.index("[excitation]"), base.index("[[buildings]]")
+        text = base[:start] + table + "\n" + base[end:]
+        if storey:
+            tomllib.loads("[x]\n" + storey)  # the storey's lines are TOML
+            law = re.search(r"hysteresis = (\{.*?\})", storey).group(1)
+            text = text.replace("bouc_wen = { alpha = 0.05, A = 1.0, beta = 2.0, gamma = -1.0, n = 1 }", f"hysteresis = {law}", 1)
+        path = tmp_path / "case.toml"
+        path.write_text(text)
+        case = load_case(path)
+        if storey:
+            assert case.buildings[0].storeys[0].yield_drift == pytest.approx(0.01, rel=1e-12)  # 1 cm
