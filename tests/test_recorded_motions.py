@@ -148,3 +148,20 @@ def test_pga_and_g0_together_are_refused(tmp_path):
     with pytest.raises(CaseError) as caught:
         load_case(path)
     assert caught.value.field == "excitation" and "G0 and pga" in caught.value.message
+
+
+def test_a_bad_record_file_exits_2_naming_file_and_line(tmp_path, capsys):
+    (tmp_path / "bad.AT2").write_text("PEER\nEVENT\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS=    4, DT= .0050 SEC\n"
+                                      "0.1 0.2 nan 0.4\n")
+    (tmp_path / "case.toml").write_text(_with_excitation('[excitation]\nrecords = ["bad.AT2"]\n'))
+    assert main(["simulate", str(tmp_path / "case.toml")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "bad.AT2:5" in err
+
+
+def test_the_report_shows_the_periodogram_and_the_fitted_spectrum(suite, tmp_path):
+    from pounding.report import write_report
+
+    folder, _ = suite
+    text = write_report(tmp_path / "recorded.html", load_case(folder / "case.toml")).read_text()
+    assert "mean periodogram and the fitted" in text and "6 recorded motions" in text and "yield drift [m]" in text
