@@ -45,8 +45,7 @@ __all__ = [
 
 G = STANDARD_GRAVITY
 """Standard gravity [m/s^2]: the unit g of the files."""
-MAX_RECORD_FILE_BYTES = 200_000_000
-"""Size of one accelerogram file [bytes] (an NGA-West2 record is 0.1 to 1 MB; the samples limit is about 35 MB of .AT2)."""
+MAX_RECORD_FILE_BYTES = defaults.MAX_RECORD_FILE_BYTES
 SUFFIXES = (".at2", ".csv", ".txt", ".dat")
 """The file suffixes read (any case): PEER .AT2, or two-column text."""
 

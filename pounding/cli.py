@@ -155,7 +155,7 @@ def _estimate(args) -> int:
     paper = result.paper
     rules = result.separation_rules
     force_text = lambda n: _format_force(n) if abs(n) < 1e12 else f"{n / 1e6:.4g} MN"
-    print(f"case                        {case.name} ({'stationary' if case.excitation.stationary else 'non-stationary'}, {case.excitation.duration:g} s)")
+    print(f"case                        {case.name} ({'stationary' if case.excitation.stationary else 'non-stationary'}, {case.excitation.duration:.4g} s)")
     print(f"gap                         {100 * case.contact.gap:{'.2f' if case.contact.gap < 1e4 else '.4g'}} cm")
     linearized = result.response
     for line in engineering_lines(engineering_terms(case)):

@@ -13,6 +13,7 @@ __all__ = [
     "SEED",
     "LIMITS_VARIABLE",
     "MAX_CASE_FILE_BYTES",
+    "MAX_RECORD_FILE_BYTES",
     "MAX_GAPS",
     "MAX_CHUNK_SAMPLES",
     "MAX_HISTORY_VALUES",
@@ -88,6 +89,8 @@ MAX_SWEEP_POINTS = 10_000
 """Points of a parametric study (the product of the --vary counts): 10,000 are checked and loaded in 2 s, 0.15 GB; their estimates take 2 min on one core, plus their records."""
 MAX_CASE_FILE_BYTES = 1_000_000
 """Size of a case file [bytes] (a preset is 1 kB, a 20 + 20-storey case 6 kB)."""
+MAX_RECORD_FILE_BYTES = 200_000_000
+"""Size of a recorded motion's file [bytes] (a 100 s NGA record at 0.005 s is about 0.3 MB)."""
 MAX_CHUNK_SAMPLES = 2**24
 """Ground-acceleration samples one thread holds at once, Settings.chunk_size x samples per record: 16,777,216 (0.13 GB; 8 records at the sample limit)."""
 MAX_HISTORY_VALUES = 2**27
