@@ -66,8 +66,11 @@ def _simulate(args) -> int:
     if args.design_gap is not None:
         return _print_design_gap(case, result, closed_form, failure, args)
     if args.json:
-        beside = {"error": failure} if closed_form is None else _closed_form_dict(closed_form)
-        print(json.dumps({**result.to_dict(), "closed_form": beside}))
+        beside = {"error": failure} if closed_form is None else _closed_form_dict(closed_form, args.capacity)
+        out = {**result.to_dict(), "closed_form": beside}
+        if args.capacity is not None:
+            out.update(capacity=args.capacity, **result.exceedance(args.capacity))
+        print(json.dumps(out))
         return 0
     low, high = result.force_max_confidence_interval
     print(f"case            {case.name}")
@@ -116,11 +119,16 @@ def _records_text(case, count: int, seed: int) -> str:
     return f"{count} x {case.excitation.duration:g} s, seed {seed}"
 
 
-def _closed_form_dict(closed_form) -> dict:
+def _closed_form_dict(closed_form, capacity: float | None = None) -> dict:
     """The closed form's numbers printed beside a Monte Carlo study (SI), with its warnings."""
     keys = ("force_expected", "pounding_probability", "impacts_expected", "accuracy_regime", "measured_accuracy")
-    return {**{key: getattr(closed_form, key) for key in keys}, "paper_force_expected": closed_form.paper.force_expected,
-            "warnings": list(closed_form.warnings)}
+    distribution = closed_form.force_max_distribution
+    out = {**{key: getattr(closed_form, key) for key in keys}, "paper_force_expected": closed_form.paper.force_expected,
+           "force_max_quantiles": {key: distribution.quantile(float(key)) for key in defaults.FORCE_QUANTILES},
+           "warnings": list(closed_form.warnings)}
+    if capacity is not None:
+        out["probability_exceeding"] = closed_form.probability_exceeding(capacity)
+    return out
 
 
 def _print_design_gap(case, result, closed_form, failure, args) -> int:
@@ -150,7 +158,11 @@ def _estimate(args) -> int:
     result = estimate(case, target_probability=args.target_probability, paper_variance=args.paper_variance,
                       michaelov_n1=args.michaelov_n1)
     if args.json:
-        print(json.dumps(result.to_dict()))
+        out = result.to_dict()
+        if args.capacity is not None:
+            out["capacity"] = args.capacity
+            out["probability_exceeding"] = result.probability_exceeding(args.capacity)
+        print(json.dumps(out))
         return 0
     paper = result.paper
     rules = result.separation_rules
@@ -167,6 +179,11 @@ def _estimate(args) -> int:
     print("recommended (gap-aware)")
     print(f"  expected extreme force    {force_text(result.force_expected)}")
     print(f"  expected peak impact v    {result.relative_velocity_expected:.4f} m/s")
+    quantiles = result.force_max_distribution
+    print(f"  F_max fractiles           50 %: {force_text(quantiles.quantile(0.5))}, 84 %: {force_text(quantiles.quantile(0.84))}, "
+          f"95 %: {force_text(quantiles.quantile(0.95))}")
+    if args.capacity is not None:
+        print(f"  P(F_max > {force_text(args.capacity)})  {100 * result.probability_exceeding(args.capacity):.1f} %")
     print(f"  expected impacts          {result.impacts_expected:.2f}   (approaches from below the gap; rebounds not counted)")
     print("  force braking an impact   " + (f"{force_text(result.opposing_force)}   (the buildings' own, at the gap)"
                                               if result.impacts_expected > 0.0 else "n/a (no impact expected at this gap)"))

@@ -24,6 +24,7 @@ __all__ = [
     "MAX_SYNTHESIS_SAMPLES",
     "DASHBOARD_RECORDS",
     "DESIGN_SYNTHESIS_FACTOR",
+    "FORCE_QUANTILES",
     "DESIGN_GAP_RECORDS",
     "INTEGRATOR_TOLERANCE",
     "MICHAELOV_N1",
@@ -54,6 +55,8 @@ INTEGRATOR_TOLERANCE = 1e-6
 DESIGN_SYNTHESIS_FACTOR = 4
 """synthesis_factor of the records of a design-spectrum case: at 1 a 20 s record carries the PSD on lines 0.31 rad/s
 apart, as wide as a 5 % oscillator's band at 2 s, and the records' mean spectrum ripples by 5 % (docs/hazard.md)."""
+FORCE_QUANTILES = ("0.5", "0.84", "0.95")
+"""The fractiles of F_max that ``estimate --json`` and ``simulate --json`` give (``force_max_quantiles``)."""
 RECORDS = 100
 """Records of a Monte Carlo study (``pounding simulate``, ``simulate``)."""
 DASHBOARD_RECORDS = 50

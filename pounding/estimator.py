@@ -21,6 +21,7 @@ from . import defaults
 from .case import Case, as_case
 from .contact import peak_force_ratio
 from .engineering import engineering_terms
+from .force_distribution import ForceDistribution, force_distribution
 from .errors import CaseError, check_limit, check_probability
 from .gap_aware import (
     Crossings,
@@ -103,6 +104,8 @@ class Estimate:
         takes: :func:`~pounding.regimes.extreme_warnings`).
     crossings : Crossings
         The free motion's sigma history, from which :meth:`gap_curve` counts other gaps.
+    force_max_distribution : ForceDistribution
+        P(F_max <= f) at the case's gap (G31): its quantiles, P(F_max > capacity).
     accuracy_regime : str
         One of :data:`~pounding.regimes.REGIMES`: where the estimate's
         accuracy was measured alike.
@@ -131,12 +134,17 @@ class Estimate:
     response: ContactResponse = field(repr=False)
     warnings: tuple[str, ...]
     crossings: Crossings = field(repr=False)
+    force_max_distribution: ForceDistribution = field(repr=False)
     accuracy_regime: str
     measured_accuracy: str
 
     def gap_curve(self, gaps) -> GapCurve:
         """This estimate at other gaps [m], reusing its response statistics."""
         return gap_curve(self.case, self.crossings, gaps, self.paper.force_expected)
+
+    def probability_exceeding(self, capacity: float) -> float:
+        """P(F_max > capacity) [-] for a capacity [N] > 0 (G31)."""
+        return self.force_max_distribution.probability_exceeding(capacity)
 
     def to_dict(self) -> dict:
         """JSON-ready, SI units."""
@@ -178,6 +186,9 @@ class Estimate:
         if not self.case.excitation.stationary:
             out["paper"]["sigma_relative_velocity_equivalent"] = paper.sigma_relative_velocity_equivalent
             out["paper"]["michaelov_n1"] = paper.michaelov_n1
+        distribution = self.force_max_distribution
+        out["force_max_quantiles"] = {key: distribution.quantile(float(key)) for key in defaults.FORCE_QUANTILES}
+        out["no_impact_probability"] = distribution.no_impact_probability
         out.update(engineering_terms(self.case))
         out["units"]["acceleration"] = "m/s^2"
         return out
@@ -248,6 +259,7 @@ def estimate(
         response=pair.stationary_response,
         warnings=extreme_warnings(pair, force, paper.force_expected, float(velocity), sigma_x) + assessment.warnings,
         crossings=crossings,
+        force_max_distribution=force_distribution(crossings, contact.gap, contact, case.reduced_mass, impacting),
         accuracy_regime=assessment.regime,
         measured_accuracy=assessment.measured_accuracy,
     )

@@ -6,14 +6,13 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import (
-    stdtrit,  # Student t quantile; scipy.stats costs a second to import
-)
+from scipy.special import bdtr, ndtri, stdtrit  # binomial CDF, normal and t quantiles; scipy.stats is slow to import
 
+from . import defaults
 from .case import Case
 from .system import Settings
 
-__all__ = ["SimulationResult"]
+__all__ = ["SimulationResult", "quantile_interval", "wilson_interval"]
 
 
 @dataclass(frozen=True)
@@ -87,6 +86,16 @@ class SimulationResult:
         """Mean number of impacts per record."""
         return float(np.mean(self.impacts))
 
+    def force_max_quantile(self, probability: float) -> tuple[float, float | None, float | None]:
+        """The empirical ``probability`` quantile of F_max [N] and its 95 % interval (:func:`quantile_interval`)."""
+        return quantile_interval(self.force_max, probability)
+
+    def exceedance(self, capacity: float) -> dict:
+        """The fraction of records with F_max > capacity [N] and its 95 % Wilson interval (JSON keys)."""
+        exceeding = int(np.sum(self.force_max > capacity))
+        return {"probability_exceeding": exceeding / self.n_records,
+                "probability_exceeding_interval": list(wilson_interval(exceeding, self.n_records))}
+
     def to_dict(self) -> dict:
         """JSON-ready summary and per-record values, SI units; for recorded
         motions, ``record_files`` names each record and ``seed`` is null."""
@@ -103,6 +112,8 @@ class SimulationResult:
             "force_max_std_error": _finite_or_none(self.force_max_std_error),
             "force_max_ci95": [_finite_or_none(low), _finite_or_none(high)],
             "pounding_fraction": self.pounding_fraction,
+            "force_max_quantiles": {key: self.force_max_quantile(float(key))[0] for key in defaults.FORCE_QUANTILES},
+            "force_max_quantiles_ci95": {key: list(self.force_max_quantile(float(key))[1:]) for key in defaults.FORCE_QUANTILES},
             "impacts_mean": self.impacts_mean,
             "force_max": self.force_max.tolist(),
             "impacts": self.impacts.astype(int).tolist(),
@@ -116,6 +127,29 @@ class SimulationResult:
 
 def _finite_or_none(value: float) -> float | None:
     return float(value) if math.isfinite(value) else None
+
+
+def quantile_interval(values, probability: float) -> tuple[float, float | None, float | None]:
+    """The empirical ``probability`` quantile of ``values`` and a distribution-free 95 % interval from the
+    order statistics: x_(l) and x_(u) with P(B < l) <= 0.025 and P(B < u) >= 0.975, B binomial(n, probability)
+    (then P(x_(l) <= q < x_(u)) >= 0.95 for any continuous law); an end is None where n is too small for it."""
+    ordered = np.sort(np.asarray(values, dtype=float))
+    n = ordered.size
+    cumulative = bdtr(np.arange(n + 1), n, probability)  # P(B <= k), k = 0..n
+    lows = np.flatnonzero(cumulative[:n] <= 0.025)  # P(B <= l - 1) <= 0.025, l = k + 1
+    highs = np.flatnonzero(cumulative[:n] >= 0.975)  # P(B <= u - 1) >= 0.975, u = k + 1
+    low = float(ordered[lows[-1]]) if lows.size else None
+    high = float(ordered[highs[0]]) if highs.size else None
+    return float(np.quantile(ordered, probability)), low, high
+
+
+def wilson_interval(successes: int, trials: int) -> tuple[float, float]:
+    """Wilson's 95 % score interval of a binomial proportion."""
+    z = float(ndtri(0.975))
+    fraction = successes / trials
+    centre = (fraction + z * z / (2 * trials)) / (1 + z * z / trials)
+    half = z * math.sqrt(fraction * (1 - fraction) / trials + z * z / (4 * trials * trials)) / (1 + z * z / trials)
+    return max(0.0, centre - half), min(1.0, centre + half)
 
 
 def _durations(result: SimulationResult) -> float | list[float]:

@@ -1,0 +1,66 @@
+"""The distribution of F_max: the closed form (G31) against Monte Carlo, and the Monte Carlo's own intervals
+against their nominal coverage."""
+
+import numpy as np
+import pytest
+
+from pounding import estimate, load_case, simulate
+from pounding.cli import main
+from pounding.monte_carlo_result import quantile_interval, wilson_interval
+
+
+@pytest.mark.parametrize("name", ["section5-T2-0.4", "section5-T2-0.8"])
+def test_closed_form_fractiles_against_500_records(name):
+    """Frequent pounding: the closed-form median and 84th percentile within 10 % of 500 records' ones."""
+    case = load_case(name)
+    closed = estimate(case)
+    records = simulate(case, records=500, seed=3).force_max
+    for probability in (0.5, 0.84):
+        assert closed.force_max_distribution.quantile(probability) == pytest.approx(np.quantile(records, probability), rel=0.10)
+
+
+def test_the_distribution_has_the_estimates_mean_and_no_impact_probability():
+    """int P(F_max > f) df is G19's E[F_max]; P(F_max = 0) is close to 1 - the pounding probability of G21
+    (G31 counts the impacting motion at v = 0, as G19 does; G21 the free motion the first impact meets)."""
+    for name in ("section5-T2-0.4", "section6-T2-0.8-nonstationary"):
+        closed = estimate(load_case(name))
+        distribution = closed.force_max_distribution
+        assert distribution.mean() == pytest.approx(closed.force_expected, rel=1e-3)
+        assert distribution.no_impact_probability == pytest.approx(1 - closed.pounding_probability, rel=0.05, abs=1e-12)
+        assert np.all(np.diff(distribution.cdf) >= 0) and distribution.cdf[-1] == pytest.approx(1.0, abs=1e-9)
+
+
+def test_a_wide_gap_has_no_force_at_its_quantiles():
+    case = load_case("section5-T2-0.4")
+    import dataclasses
+
+    wide = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=0.6))
+    closed = estimate(wide)
+    assert closed.force_max_distribution.quantile(0.5) == 0.0
+    assert closed.probability_exceeding(1e3) <= closed.pounding_probability + 1e-12
+
+
+def test_order_statistic_intervals_cover_the_true_quantile():
+    """Exponential samples of 60: the 95 % interval of the median and of the 84th percentile covers the true
+    quantile in at least 93 % of 2000 repetitions (nominal >= 95 %)."""
+    rng = np.random.default_rng(7)
+    for probability in (0.5, 0.84):
+        truth = -np.log(1 - probability)
+        covered = 0
+        for _ in range(2000):
+            _, low, high = quantile_interval(rng.exponential(size=60), probability)
+            covered += low <= truth < high
+        assert covered / 2000 >= 0.93
+
+
+def test_wilson_interval_coverage():
+    rng = np.random.default_rng(8)
+    hits = rng.binomial(80, 0.3, size=4000)
+    covered = np.mean([low <= 0.3 <= high for low, high in (wilson_interval(int(k), 80) for k in hits)])
+    assert 0.93 <= covered <= 0.98
+
+
+def test_capacity_must_be_positive(capsys):
+    with pytest.raises(SystemExit) as caught:
+        main(["estimate", "section5-T2-0.4", "--capacity", "0"])
+    assert caught.value.code == 2 and "--capacity" in capsys.readouterr().err
