@@ -37,22 +37,10 @@ from pounding.impact_damping import impact_damping
 from pounding.linearization import linearize_pair
 from pounding.linearization.residual import residual_response
 from pounding.pair import LinearizedPair
+from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
 CLI_CASE = "section5-T2-0.4"
 CLI_TARGET = 5e-3  # [s] median of one in-process `pounding estimate CASE --json`
-
-
-def median_seconds(function, repeats: int = 30, setup=None) -> float:
-    """Median wall time of ``function()`` after one warm-up call (JIT cache
-    load, tables); with ``setup``, ``function(setup())``, the setup untimed."""
-    function(setup()) if setup else function()
-    times = []
-    for _ in range(repeats):
-        argument = setup() if setup else None
-        start = time.perf_counter()
-        function(argument) if setup else function()
-        times.append(time.perf_counter() - start)
-    return float(np.median(times))
 
 
 def _command_line_estimate(argv: list[str]) -> str:

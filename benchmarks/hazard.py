@@ -16,15 +16,14 @@ Run: python3 benchmarks/hazard.py
 from __future__ import annotations
 
 import tempfile
-import time
 from pathlib import Path
 
-import numpy as np
 
 from pounding import estimate, simulate
 from pounding.accelerograms import Accelerogram, write_at2
 from pounding.case import case_from_dict
 from pounding.excitation import ground_accelerations
+from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
 BUILDINGS = [
     {"damping_ratio": 0.05, "storeys": [{"period": 1.0, "mass": 4.0e4, "hysteresis": {"yield_drift": 0.02, "post_yield_ratio": 0.05}}]},
@@ -34,16 +33,6 @@ CONTACT = {"model": "jankowski", "gap": 0.02, "stiffness": 1.96e9, "restitution"
 DESIGN = {"spectrum": "design", "code": "ec8", "spectrum_type": 1, "ground_type": "C", "ag": 0.3, "duration": 20.0}
 KANAI_TAJIMI = {"spectrum": "kanai-tajimi", "pga": 0.3, "omega_g": 15.6, "xi_g": 0.6, "duration": 20.0}
 RECORDS = 20
-
-
-def median_seconds(function, repeats: int = 20) -> float:
-    function()
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        function()
-        times.append(time.perf_counter() - start)
-    return float(np.median(times))
 
 
 def data(excitation: dict) -> dict:

@@ -14,27 +14,16 @@ Run: python3 benchmarks/motion_fit.py
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 
 from pounding.accelerograms import Accelerogram
 from pounding.excitation import Excitation, KanaiTajimi, ground_accelerations
 from pounding.motion_fit import fit_excitation
+from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
 TARGET = 0.200  # [s] one fit to 20 records of 20 s at 0.005 s
 CUTOFF = 2.0 * math.pi * 25.0  # [rad/s]
-
-
-def median_seconds(function, repeats: int = 30) -> float:
-    """Median wall time of ``function()`` after one warm-up call."""
-    function()
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        function()
-        times.append(time.perf_counter() - start)
-    return float(np.median(times))
 
 
 def suite(records: int, duration: float = 20.0, time_step: float = 0.005, seed: int = 1) -> list[Accelerogram]:

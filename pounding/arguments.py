@@ -70,5 +70,7 @@ def bounded_number(low: float, high: float, *, open_low: bool = False, open_high
 
 probability = bounded_number(0.0, 1.0, open_low=True, open_high=True)
 """An argparse type: a probability in (0, 1)."""
+capacity = bounded_number(0.0, 1e15, open_low=True)
+"""An argparse type: a capacity [N] > 0 (``--capacity``)."""
 tolerance = bounded_number(1e-12, 1e-2)
 """An argparse type: the integrator's relative tolerance, as ``Settings.tolerance`` allows."""

@@ -13,6 +13,7 @@ Accelerations written in g (``pga``, ``ag``, ``SDS``, ``SD1``,
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from pathlib import Path
 
@@ -104,16 +105,8 @@ def _process(table, units: UnitSystem, name: str) -> Excitation:
         from .peak_factors import intensity_for_peak_ground_acceleration
 
         intensity = intensity_for_peak_ground_acceleration(excitation, _in_g(table, "pga"))
-        excitation = build(_WHERE, Excitation, build(_WHERE, type(spectrum), intensity, *_shape(spectrum)),
-                           excitation.duration, excitation.envelope, **_sampling(table))
+        excitation = dataclasses.replace(excitation, spectrum=dataclasses.replace(spectrum, G0=intensity))
     return excitation
-
-
-def _shape(spectrum: KanaiTajimi) -> tuple[float, ...]:
-    """The filter parameters after G0."""
-    if isinstance(spectrum, CloughPenzien):
-        return spectrum.omega_g, spectrum.xi_g, spectrum.omega_f, spectrum.xi_f
-    return spectrum.omega_g, spectrum.xi_g
 
 
 def _design_target(table, code: str):

@@ -11,6 +11,7 @@ from functools import lru_cache
 from . import defaults
 from .arguments import (
     bounded_number,
+    capacity,
     probability,
     record_count,
     tolerance,
@@ -81,7 +82,7 @@ def parser() -> argparse.ArgumentParser:
     simulate.add_argument("--seed", type=_non_negative_int, default=None, help=f"seed of the study (default {defaults.SEED})")
     simulate.add_argument("--tolerance", type=tolerance, default=defaults.INTEGRATOR_TOLERANCE,
                           help=f"relative tolerance of the integrator (default {defaults.INTEGRATOR_TOLERANCE:g})")
-    simulate.add_argument("--capacity", type=bounded_number(0.0, 1e15, open_low=True), metavar="F", default=None,
+    simulate.add_argument("--capacity", type=capacity, metavar="F", default=None,
                           help="a capacity F [N]: also the fraction of records whose F_max exceeds it, with its 95 %% interval")
     simulate.add_argument("--json", action="store_true", help="print one JSON object (SI units) instead of a table")
     simulate.add_argument("--design-gap", type=probability, metavar="P", default=None,
@@ -107,7 +108,7 @@ def parser() -> argparse.ArgumentParser:
                           help="the paper's method under an envelope: order n1 of the moments of Michaelov's equivalent "
                           "stationary process, Eq. 29, in [{:g}, {:g}] (default {:g}, as the paper)".format(
                               *defaults.MICHAELOV_N1_RANGE, defaults.MICHAELOV_N1))
-    estimate.add_argument("--capacity", type=bounded_number(0.0, 1e15, open_low=True), metavar="F", default=None,
+    estimate.add_argument("--capacity", type=capacity, metavar="F", default=None,
                           help="a capacity F [N]: also the probability that F_max exceeds it")
     estimate.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
 

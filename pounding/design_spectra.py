@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import CaseError, described, finite_number, quote
+from .errors import CaseError, described, finite_number, finite_numbers, quote
 
 __all__ = [
     "ASCE7Spectrum",
@@ -179,14 +179,6 @@ class ASCE7Spectrum:
                 f"(T0 = {self.T0:.3g} s, TS = {self.TS:.3g} s), 5 % damping")
 
 
-def _floats(field: str, values) -> tuple[float, ...]:
-    try:
-        items = tuple(values)
-    except TypeError:
-        raise CaseError(field, f"must be a sequence of numbers, got {quote(values)}") from None
-    return tuple(finite_number(f"{field}.{i}", v) for i, v in enumerate(items, start=1))
-
-
 @dataclass(frozen=True)
 class TabulatedSpectrum:
     """A 5 %-damped pseudo-acceleration spectrum given by points (D9).
@@ -203,8 +195,8 @@ class TabulatedSpectrum:
     accelerations: tuple[float, ...]
 
     def __post_init__(self):
-        periods = _floats("periods", self.periods)
-        accelerations = _floats("accelerations", self.accelerations)
+        periods = finite_numbers("periods", self.periods)
+        accelerations = finite_numbers("accelerations", self.accelerations)
         if len(periods) < 2:
             raise CaseError("periods", f"must hold at least 2 periods, got {len(periods)}")
         if not all(p > 0 for p in periods) or not all(b > a for a, b in zip(periods, periods[1:])):

@@ -16,6 +16,7 @@ __all__ = [
     "check_probability",
     "described",
     "finite_number",
+    "finite_numbers",
     "quote",
     "whole_number",
 ]
@@ -78,6 +79,15 @@ def described(value) -> str:
 def _is_number(value) -> bool:
     # numpy's float and integer scalars are numbers.Real; bool and numpy.bool_ are refused.
     return isinstance(value, numbers.Real) and not isinstance(value, bool) and type(value).__name__ != "bool_"
+
+
+def finite_numbers(field: str, values) -> tuple[float, ...]:
+    """``values`` as a tuple of Python floats, each checked by :func:`finite_number` as ``field.1``, ``field.2``, ..."""
+    try:
+        items = tuple(values)
+    except TypeError:
+        raise CaseError(field, f"must be a sequence of numbers, got {quote(values)}") from None
+    return tuple(finite_number(f"{field}.{i}", v) for i, v in enumerate(items, start=1))
 
 
 def finite_number(field: str, value) -> float:

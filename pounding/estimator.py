@@ -232,7 +232,8 @@ def estimate(
     required_gap = gap_for_probability(crossings, target_probability)
     impacting = crossings.damped(gap)
     (velocity,) = expected_maximum(crossings, gap, lambda v: v, 1.0, impacting)
-    force = float(expected_force_maximum(crossings, gap, contact, case.reduced_mass, impacting)[0])
+    distribution = force_distribution(crossings, contact.gap, contact, case.reduced_mass, impacting)
+    force = distribution.mean()  # G19: E[F_max] on G31's own grid
     paper = paper_estimate(pair, paper_variance, michaelov_n1)
     sigma_x = response.sigma_relative_displacement
     assessment = assess(pair, contact.gap, sigma_x, required_gap, target_probability)
@@ -259,7 +260,7 @@ def estimate(
         response=pair.stationary_response,
         warnings=extreme_warnings(pair, force, paper.force_expected, float(velocity), sigma_x) + assessment.warnings,
         crossings=crossings,
-        force_max_distribution=force_distribution(crossings, contact.gap, contact, case.reduced_mass, impacting),
+        force_max_distribution=distribution,
         accuracy_regime=assessment.regime,
         measured_accuracy=assessment.measured_accuracy,
     )

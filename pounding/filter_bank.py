@@ -20,20 +20,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import CaseError, finite_number, quote
+from .errors import CaseError, finite_number, finite_numbers, quote
 
 __all__ = ["FilterBank"]
 
 COMPONENTS_MAX = 64
 """Most components of a bank (each adds two states to the closed form's linear system)."""
-
-
-def _floats(field: str, values) -> tuple[float, ...]:
-    try:
-        items = tuple(values)
-    except TypeError:
-        raise CaseError(field, f"must be a sequence of numbers, got {quote(values)}") from None
-    return tuple(finite_number(f"{field}.{i}", v) for i, v in enumerate(items, start=1))
 
 
 @dataclass(frozen=True)
@@ -63,7 +55,7 @@ class FilterBank:
         if not self.G0 >= 0:
             raise CaseError("G0", f"must be >= 0, got {quote(self.G0)}")
         for field in ("frequencies", "damping", "weights"):
-            object.__setattr__(self, field, _floats(field, getattr(self, field)))
+            object.__setattr__(self, field, finite_numbers(field, getattr(self, field)))
         count = len(self.frequencies)
         if not 1 <= count <= COMPONENTS_MAX or len(self.damping) != count or len(self.weights) != count:
             raise CaseError("frequencies", f"frequencies, damping and weights must have the same length, 1 to {COMPONENTS_MAX}")

@@ -27,8 +27,8 @@ from .gap_aware import Crossings, opposing_forces
 
 __all__ = ["ForceDistribution", "force_distribution"]
 
-POINTS = 241
-"""Speeds of the grid on which G31 is tabulated (uniform in v^p, as G19's quadrature)."""
+POINTS = 121
+"""Speeds of the grid on which G31 is tabulated: G19's grid (uniform in v^p), so that :meth:`ForceDistribution.mean` is G19."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -83,7 +83,7 @@ def force_distribution(crossings: Crossings, gap: float, contact, reduced_mass: 
     counts = crossings.impacting_intensity(gaps, velocities, motion)[0]
     opposing = opposing_forces(crossings, gaps, reduced_mass)[0] if counts[0] > 0.0 else 0.0
     forces = np.asarray(impact_peak_force(contact, velocities, reduced_mass, opposing), dtype=float)
-    cdf = np.exp(-np.maximum(counts, 0.0))
+    cdf = np.exp(-np.maximum(counts, 0.0))  # 1 - cdf is G19's exceedance
     cdf = np.maximum.accumulate(cdf)  # a count that does not fall (rounding) would make the cdf fall
     if not (np.all(np.isfinite(forces)) and np.all(np.diff(forces) >= 0.0) and math.isfinite(cdf[0])):
         raise CaseError("contact", "the peak force of an impact does not rise with its speed here: no distribution of F_max")

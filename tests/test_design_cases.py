@@ -1,7 +1,6 @@
 """Design-spectrum cases through the case file, the command line and the report: one PSD for both methods,
 and every bad key named with what is allowed."""
 
-import json
 import textwrap
 
 import numpy as np
@@ -113,13 +112,8 @@ def test_the_command_line_names_the_key_and_exits_2(tmp_path, capsys):
     assert "excitation.ground_type" in err and "A, B, C, D, E" in err and len(err.strip().splitlines()) == 1
 
 
-def test_estimate_json_describes_the_design_spectrum(tmp_path, capsys):
-    path = tmp_path / "case.json"
-    path.write_text(json.dumps(_data(EC8)))
-    from pounding import cli  # the JSON form of a case is the library's (case_from_dict); the CLI reads TOML files
-    del cli
-    case = case_from_dict(_data(EC8))
-    out = estimate(case).to_dict()
+def test_estimate_json_describes_the_design_spectrum(ec8_case):
+    out = estimate(ec8_case).to_dict()
     design = out["design_spectrum"]
     assert design["code"] == "ec8" and len(design["periods"]) == len(design["target"]) == len(design["expected"])
     assert out["ground_motion"]["pga_expected"] > 0 and out["storeys"][1]["yield_drift"] is None
