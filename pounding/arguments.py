@@ -74,3 +74,46 @@ capacity = bounded_number(0.0, 1e15, open_low=True)
 """An argparse type: a capacity [N] > 0 (``--capacity``)."""
 tolerance = bounded_number(1e-12, 1e-2)
 """An argparse type: the integrator's relative tolerance, as ``Settings.tolerance`` allows."""
+
+
+def increasing_values(unit: str, minimum_count: int = 2):
+    """An argparse type: ``start:stop:count`` (``count`` >= ``minimum_count`` values from ``start`` to ``stop``,
+    both ends included) or ``a,b,c``; every value a finite number > 0 in ``unit``, strictly increasing."""
+
+    def number(text: str, whole: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{_shown(text.strip())} in {_shown(whole)} is not a number") from None
+        if not (math.isfinite(value) and value > 0):
+            raise argparse.ArgumentTypeError(f"every value must be a finite number > 0 {unit}, got {_shown(text.strip())}")
+        return value
+
+    def parse(text: str) -> tuple[float, ...]:
+        if ":" in text:
+            parts = text.split(":")
+            if len(parts) != 3:
+                raise argparse.ArgumentTypeError(f"a range is start:stop:count, got {_shown(text)}")
+            start, stop = number(parts[0], text), number(parts[1], text)
+            try:
+                count = int(parts[2])
+            except ValueError:
+                raise argparse.ArgumentTypeError(f"count must be a whole number, got {_shown(parts[2].strip())}") from None
+            if count < minimum_count:
+                raise argparse.ArgumentTypeError(f"count must be >= {minimum_count}, got {count}")
+            if not start < stop:
+                raise argparse.ArgumentTypeError(f"the range must increase: start < stop, got {_shown(text)}")
+            if count > defaults.MAX_SWEEP_POINTS and defaults.limits_enabled():
+                raise argparse.ArgumentTypeError(f"{count:,} points exceed the limit of {defaults.MAX_SWEEP_POINTS:,} "
+                                                 f"({defaults.LIMITS_VARIABLE}=off lifts it)")
+            step = (stop - start) / (count - 1)
+            values = tuple(float(f"{start + i * step:.12g}") for i in range(count - 1)) + (stop,)
+        else:
+            values = tuple(number(item, text) for item in text.split(","))
+            if len(values) < minimum_count:
+                raise argparse.ArgumentTypeError(f"give at least {minimum_count} values (start:stop:count or a,b,c), got {_shown(text)}")
+        if any(b <= a for a, b in zip(values, values[1:])):
+            raise argparse.ArgumentTypeError(f"the values must increase strictly, got {_shown(text)}")
+        return values
+
+    return parse

@@ -38,6 +38,24 @@ def _format_force(newtons: float) -> str:
     return f"{newtons / 1e6:.4f} MN" if abs(newtons) >= 1e5 else f"{newtons / 1e3:.2f} kN"
 
 
+def _force_text(units: str):
+    """How ``estimate`` and ``simulate`` print a force [N]: kN or MN (SI), or kgf (``--units kgf-cm-s``)."""
+    if units == "SI":
+        return lambda n: _format_force(n) if abs(n) < 1e12 else f"{n / 1e6:.4g} MN"
+    from .display_units import display
+
+    return display(units).force
+
+
+def _capacity(args) -> float | None:
+    """``--capacity`` in N: given in N, or in kgf with ``--units kgf-cm-s`` (converted here, once)."""
+    if args.capacity is None:
+        return None
+    from .display_units import display
+
+    return args.capacity * display(args.units).system.force
+
+
 def _simulate(args) -> int:
     from .case import load_case
     from .errors import ConvergenceError, check_probability
@@ -47,6 +65,7 @@ def _simulate(args) -> int:
     if args.design_gap is not None:
         check_probability(args.design_gap, "--design-gap")
     case = load_case(args.case)
+    capacity = _capacity(args)
     settings = Settings(tolerance=args.tolerance)
     records, seed = _study_size(case, args)
     bar = _progress_bar(records, sys.stderr.isatty())
@@ -61,25 +80,32 @@ def _simulate(args) -> int:
         closed_form, failure = estimate(case, target_probability=args.design_gap or defaults.TARGET_PROBABILITY), None
     except (ConvergenceError, ValueError, ArithmeticError) as error:  # CaseError, LinAlgError, overflow: the MC stands
         closed_form, failure = None, " ".join(str(error).split()) or type(error).__name__  # one line: why not
-    force_text = lambda n: _format_force(n) if abs(n) < 1e12 else f"{n / 1e6:.4g} MN"
+    force_text = _force_text(args.units)
     error_text = lambda f, r: f"{100 * (f / r - 1):+.1f} %" if abs(f / r - 1) <= 1e4 else f"{f / r:.3g} times"
     if args.design_gap is not None:
         return _print_design_gap(case, result, closed_form, failure, args)
     if args.json:
-        beside = {"error": failure} if closed_form is None else _closed_form_dict(closed_form, args.capacity)
+        beside = {"error": failure} if closed_form is None else _closed_form_dict(closed_form, capacity)
         out = {**result.to_dict(), "closed_form": beside}
-        if args.capacity is not None:
-            out.update(capacity=args.capacity, **result.exceedance(args.capacity))
+        if capacity is not None:
+            out.update(capacity=capacity, **result.exceedance(capacity))
         print(json.dumps(out))
         return 0
     low, high = result.force_max_confidence_interval
     print(f"case            {case.name}")
     print(f"records         {_records_text(case, result.n_records, seed)}")
     if math.isfinite(result.force_max_std_error):
-        print(f"mean F_max      {_format_force(result.force_max_mean)}  (standard error {_format_force(result.force_max_std_error)})")
-        print(f"95% CI          {_format_force(low)} .. {_format_force(high)}")
+        print(f"mean F_max      {force_text(result.force_max_mean)}  (standard error {force_text(result.force_max_std_error)})")
+        print(f"95% CI          {force_text(low)} .. {force_text(high)}")
     else:
-        print(f"mean F_max      {_format_force(result.force_max_mean)}  (one record: no standard error; run 2 or more)")
+        print(f"mean F_max      {force_text(result.force_max_mean)}  (one record: no standard error; run 2 or more)")
+    print("F_max fractiles " + ", ".join(f"{100 * float(key):g} %: {force_text(result.force_max_quantile(float(key))[0])}"
+                                         for key in defaults.FORCE_QUANTILES))
+    if capacity is not None:
+        exceeding = result.exceedance(capacity)
+        low_p, high_p = exceeding["probability_exceeding_interval"]
+        print(f"P(F_max > {force_text(capacity)})  {100 * exceeding['probability_exceeding']:.1f} % of records "
+              f"(95 % interval {100 * low_p:.1f} to {100 * high_p:.1f} %)")
     print(f"pounding        {100 * result.pounding_fraction:.1f} % of records, {result.impacts_mean:.2f} impacts per record")
     print(f"peak impact v   {result.impact_velocity_max.mean():.4f} m/s (mean over records)")
     if closed_form is None:
@@ -155,18 +181,19 @@ def _estimate(args) -> int:
     from .estimator import estimate
 
     case = load_case(args.case)
+    capacity = _capacity(args)
     result = estimate(case, target_probability=args.target_probability, paper_variance=args.paper_variance,
                       michaelov_n1=args.michaelov_n1)
     if args.json:
         out = result.to_dict()
-        if args.capacity is not None:
-            out["capacity"] = args.capacity
-            out["probability_exceeding"] = result.probability_exceeding(args.capacity)
+        if capacity is not None:
+            out["capacity"] = capacity
+            out["probability_exceeding"] = result.probability_exceeding(capacity)
         print(json.dumps(out))
         return 0
     paper = result.paper
     rules = result.separation_rules
-    force_text = lambda n: _format_force(n) if abs(n) < 1e12 else f"{n / 1e6:.4g} MN"
+    force_text = _force_text(args.units)
     print(f"case                        {case.name} ({'stationary' if case.excitation.stationary else 'non-stationary'}, {case.excitation.duration:.4g} s)")
     print(f"gap                         {100 * case.contact.gap:{'.2f' if case.contact.gap < 1e4 else '.4g'}} cm")
     linearized = result.response
@@ -182,8 +209,8 @@ def _estimate(args) -> int:
     quantiles = result.force_max_distribution
     print(f"  F_max fractiles           50 %: {force_text(quantiles.quantile(0.5))}, 84 %: {force_text(quantiles.quantile(0.84))}, "
           f"95 %: {force_text(quantiles.quantile(0.95))}")
-    if args.capacity is not None:
-        print(f"  P(F_max > {force_text(args.capacity)})  {100 * result.probability_exceeding(args.capacity):.1f} %")
+    if capacity is not None:
+        print(f"  P(F_max > {force_text(capacity)})  {100 * result.probability_exceeding(capacity):.1f} %")
     print(f"  expected impacts          {result.impacts_expected:.2f}   (approaches from below the gap; rebounds not counted)")
     print("  force braking an impact   " + (f"{force_text(result.opposing_force)}   (the buildings' own, at the gap)"
                                               if result.impacts_expected > 0.0 else "n/a (no impact expected at this gap)"))
@@ -335,6 +362,18 @@ def _report(args) -> int:
     return 0
 
 
+def _fragility(args) -> int:
+    from .cli_curves import run_fragility
+
+    return run_fragility(args)
+
+
+def _spectrum(args) -> int:
+    from .cli_curves import run_spectrum
+
+    return run_spectrum(args)
+
+
 def _records(args) -> int:
     from .cli_hazard import records_command
 
@@ -359,6 +398,8 @@ _COMMANDS = {
     "sweep": _sweep,
     "report": _report,
     "records": _records,
+    "fragility": _fragility,
+    "spectrum": _spectrum,
     "dashboard": _dashboard,
 }
 

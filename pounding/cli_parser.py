@@ -30,6 +30,8 @@ _EPILOG = """examples:
   pounding validate --records 300
   pounding sweep section5-T2-0.4 --vary contact.gap=0:5:11 --records 200 -o results/
   pounding report section5-T2-0.4 -o report.html --records 300
+  pounding fragility section5-T2-0.4 --capacity 3e5 --pga 0.05:0.6:12 --records 100 -o fragility.html
+  pounding spectrum section5-T2-0.4 --period1 0.2:2:30 --period2 0.4 -o spectrum.html
   pounding simulate my_case.toml --records 50 --json
   pounding dashboard --port 5006
 """
@@ -83,7 +85,10 @@ def parser() -> argparse.ArgumentParser:
     simulate.add_argument("--tolerance", type=tolerance, default=defaults.INTEGRATOR_TOLERANCE,
                           help=f"relative tolerance of the integrator (default {defaults.INTEGRATOR_TOLERANCE:g})")
     simulate.add_argument("--capacity", type=capacity, metavar="F", default=None,
-                          help="a capacity F [N]: also the fraction of records whose F_max exceeds it, with its 95 %% interval")
+                          help="a capacity F (N; kgf with --units kgf-cm-s): also the fraction of records whose F_max "
+                          "exceeds it, with its 95 %% interval")
+    simulate.add_argument("--units", choices=("SI", "kgf-cm-s"), default="SI",
+                          help="units of --capacity and of the forces printed: N (kN, MN) or kgf (default SI); --json is always SI")
     simulate.add_argument("--json", action="store_true", help="print one JSON object (SI units) instead of a table")
     simulate.add_argument("--design-gap", type=probability, metavar="P", default=None,
                           help="instead, the gap for probability P of no pounding, in (0, 1): a record pounds at a gap "
@@ -109,7 +114,9 @@ def parser() -> argparse.ArgumentParser:
                           "stationary process, Eq. 29, in [{:g}, {:g}] (default {:g}, as the paper)".format(
                               *defaults.MICHAELOV_N1_RANGE, defaults.MICHAELOV_N1))
     estimate.add_argument("--capacity", type=capacity, metavar="F", default=None,
-                          help="a capacity F [N]: also the probability that F_max exceeds it")
+                          help="a capacity F (N; kgf with --units kgf-cm-s): also the probability that F_max exceeds it")
+    estimate.add_argument("--units", choices=("SI", "kgf-cm-s"), default="SI",
+                          help="units of --capacity and of the forces printed: N (kN, MN) or kgf (default SI); --json is always SI")
     estimate.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
 
     records = commands.add_parser(
@@ -169,7 +176,10 @@ def parser() -> argparse.ArgumentParser:
     report.add_argument("--units", choices=("SI", "kgf-cm-s"), default="SI", help="units shown in the report (default SI)")
     report.add_argument("--json", action="store_true", help="print one JSON object: the file written and the figures in it (SI)")
 
-    from . import sweeps  # light: dask, pandas and bokeh are imported when a sweep runs
+    from . import cli_curves, sweeps  # light: dask, pandas and bokeh are imported when a sweep runs
+
+    cli_curves.add_fragility(commands)
+    cli_curves.add_spectrum(commands)
 
     sweeps.add_arguments(commands.add_parser(
         "sweep",

@@ -25,6 +25,8 @@ __all__ = [
     "DASHBOARD_RECORDS",
     "DESIGN_SYNTHESIS_FACTOR",
     "FORCE_QUANTILES",
+    "FRAGILITY_MIN_RECORDS",
+    "SPECTRUM_MIN_RECORDS",
     "DESIGN_GAP_RECORDS",
     "INTEGRATOR_TOLERANCE",
     "MICHAELOV_N1",
@@ -57,6 +59,12 @@ DESIGN_SYNTHESIS_FACTOR = 4
 apart, as wide as a 5 % oscillator's band at 2 s, and the records' mean spectrum ripples by 5 % (docs/hazard.md)."""
 FORCE_QUANTILES = ("0.5", "0.84", "0.95")
 """The fractiles of F_max that ``estimate --json`` and ``simulate --json`` give (``force_max_quantiles``)."""
+FRAGILITY_MIN_RECORDS = 10
+"""Fewest Monte Carlo records a point of a fragility curve takes: at 10, Wilson's 95 % interval of a fraction of 1/2
+spans 0.24 to 0.76; fewer tell little."""
+SPECTRUM_MIN_RECORDS = 22
+"""Fewest Monte Carlo records a point of a force spectrum takes: the fewest for which the order statistics give both
+ends of a 95 % interval of the 84th percentile (1 - 0.84^n >= 0.975)."""
 RECORDS = 100
 """Records of a Monte Carlo study (``pounding simulate``, ``simulate``)."""
 DASHBOARD_RECORDS = 50

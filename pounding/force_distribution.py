@@ -24,8 +24,9 @@ from .contact import impact_peak_force
 from .crossing_kernels import U_MAX
 from .errors import CaseError, check_probability, finite_number
 from .gap_aware import Crossings, opposing_forces
+from .pair import LinearizedPair
 
-__all__ = ["ForceDistribution", "force_distribution"]
+__all__ = ["ForceDistribution", "force_distribution", "force_distribution_of"]
 
 POINTS = 121
 """Speeds of the grid on which G31 is tabulated: G19's grid (uniform in v^p), so that :meth:`ForceDistribution.mean` is G19."""
@@ -88,3 +89,16 @@ def force_distribution(crossings: Crossings, gap: float, contact, reduced_mass: 
     if not (np.all(np.isfinite(forces)) and np.all(np.diff(forces) >= 0.0) and math.isfinite(cdf[0])):
         raise CaseError("contact", "the peak force of an impact does not rise with its speed here: no distribution of F_max")
     return ForceDistribution(forces, cdf)
+
+
+def force_distribution_of(case) -> ForceDistribution:
+    """G31 of ``case`` at its own gap, without the rest of an estimate (its mean is :func:`~pounding.estimate`'s
+    E[F_max]). Two buildings that move alike never pound: F_max = 0 for sure (where :func:`~pounding.estimate`
+    refuses the case, a spectrum passing T1 = T2 takes this point)."""
+    pair = LinearizedPair.of(case)
+    if pair.moves_alike:
+        pair.check_runaway()
+        return ForceDistribution(np.array([0.0, 1.0]), np.ones(2))
+    crossings = Crossings.of(pair)
+    gap = case.contact.gap
+    return force_distribution(crossings, gap, case.contact, case.reduced_mass, crossings.damped(np.array([gap])))

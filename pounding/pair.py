@@ -315,10 +315,17 @@ class LinearizedPair:
         if floors == 0.0:
             raise CaseError("excitation.G0", f"must be > 0 for the closed-form estimate, got {excitation.spectrum.G0:g}: "
                             "without ground motion nothing moves and nothing pounds")
-        # c11 + c22 - 2 c12 of two identical buildings is rounding noise, up to ~1e-13 of c11 and of either sign.
-        if c[0, 0] + c[1, 1] - 2.0 * c[0, 1] <= 1e-12 * floors:
+        if self.moves_alike:
             raise CaseError("buildings", "the two buildings move alike at the contact floors (x1 - x2 is 0): under one "
                             "ground motion they never approach each other, so there is no pounding to estimate")
+
+    @property
+    def moves_alike(self) -> bool:
+        """Whether x1 - x2 at the contact floors is 0: two identical buildings (or no ground motion), which never
+        approach each other."""
+        c = self.stationary_response.covariance
+        # c11 + c22 - 2 c12 of two identical buildings is rounding noise, up to ~1e-13 of c11 and of either sign.
+        return bool(c[0, 0] + c[1, 1] - 2.0 * c[0, 1] <= 1e-12 * max(c[0, 0], c[1, 1]))
 
     def check_runaway(self) -> None:
         """Raise :class:`ConvergenceError` where 3 sigma of a floor's displacement (linearized, every floor of

@@ -28,6 +28,8 @@ RUNS = {
         dict(table="draw", seeds=[2026], cases=1, records=4),
         dict(table="damped", seeds=[2026], cases=1, records=4),
     ],
+    "force_distribution_accuracy": [dict(cases=1, records=4, draw=2026)],
+    "fragility_accuracy": [dict(cases=1, points=2, records=22)],
     "design_spectrum_accuracy": [dict(records=3, hazards=["EC8 1 C 0.30g"], pairs=["elastic 1.0/0.5 s"])],
     "error_decomposition": [
         dict(table=table, cases=1, records=4, rate_records=2) for table in ("force", "free-motion", "mirror", "rates")

@@ -15,13 +15,13 @@ SI inside; :class:`Display` scales for the page (forces in kN/MN or kgf).
 This package imports no plotting library at load: Bokeh is imported when
 figures are built or a report is written.
 
-Modules: :mod:`.display_units` (display units), :mod:`.snapshot` (the computed
+Modules (display units are :mod:`pounding.display_units`): :mod:`.snapshot` (the computed
 state), :mod:`.card` (the result card), :mod:`.figures` (the plots),
 :mod:`.static` (the static report).
 """
 
 from .card import RESULT_CSS, result_html
-from .display_units import DISPLAY_UNITS, Display, display
+from ..display_units import DISPLAY_UNITS, Display, display
 from .figures import PLOTTED_STEPS, Figures
 from .snapshot import (
     DEFAULT_RECORD,

@@ -7,7 +7,7 @@ import html
 import math
 
 from ..simulation import DesignGap
-from .display_units import Display, display
+from ..display_units import Display, display
 from .snapshot import MonteCarloPoint, Snapshot
 
 # --- the result card -----------------------------------------------------------

@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 from ..simulation import DesignGap, TimeHistory
-from .display_units import display
+from ..display_units import display
 from .snapshot import Snapshot
 
 # --- plots ---------------------------------------------------------------------

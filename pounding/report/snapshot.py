@@ -31,7 +31,8 @@ PSD_POINTS = 400
 @dataclass(frozen=True)
 class MonteCarloPoint:
     """Summary of one Monte Carlo study: mean extreme force [N] with its 95 %
-    confidence interval [N], pounding fraction [-], at ``gap`` [m]."""
+    confidence interval [N], pounding fraction [-], at ``gap`` [m]; and every
+    record's F_max [N] (for the empirical distribution)."""
 
     gap: float
     records: int
@@ -40,12 +41,14 @@ class MonteCarloPoint:
     force_low: float
     force_high: float
     pounding_fraction: float
+    force_max_values: tuple = ()
 
     @classmethod
     def from_result(cls, result: SimulationResult) -> MonteCarloPoint:
         low, high = result.force_max_confidence_interval
         return cls(
-            result.case.contact.gap, result.n_records, result.seed, result.force_max_mean, low, high, result.pounding_fraction
+            result.case.contact.gap, result.n_records, result.seed, result.force_max_mean, low, high, result.pounding_fraction,
+            tuple(float(f) for f in result.force_max),
         )
 
 

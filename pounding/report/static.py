@@ -13,8 +13,9 @@ from ..case import Case
 from ..filter_bank import FilterBank
 from ..output import check_target, write_atomic
 from ..regimes import accuracy_data
+from ..display_units import display
 from .card import RESULT_CSS, result_html
-from .display_units import display
+from .distribution_section import distribution_figure, quantiles_table
 from .figures import Figures
 from .hazard_section import hazard_figure, storeys_table
 from .snapshot import Snapshot, compute_snapshot
@@ -135,6 +136,8 @@ def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None)
             + "<h2>Result</h2>"
             + result_html(snapshot, units, matching[-1] if matching else None, "not run for this report", snapshot.design_gap)
             + f"<p>{history_note}</p>"
+            + "<h2>Distribution of the extreme force</h2>"
+            + quantiles_table(snapshot, units)
         ),
         sizing_mode="stretch_width",
     )
@@ -143,6 +146,7 @@ def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None)
     hazard = hazard_figure(case, snapshot.seed)
     layout = column(
         header,
+        distribution_figure(snapshot, units),
         *([hazard] if hazard is not None else []),
         figures.gap,
         row(figures.psd_ground, figures.psd_velocity, sizing_mode="stretch_width"),

@@ -8,8 +8,9 @@ the case file with those keys set, loaded and validated as any case file.
 
 For each point, the records ``0 .. records - 1`` of the study seeded ``seed``
 are split into chunks of ``chunk_records``; a chunk runs on a Dask worker,
-which returns only sums (of F_max, F_max^2, impacts, ...), never per-record
-arrays or time histories: memory stays flat however many records. The sums
+which returns sums (of F_max, F_max^2, impacts, ...) and each record's F_max
+(8 bytes a record, for quantiles and exceedance counts), never time
+histories: memory stays small however many records. The sums
 are exact (rational), so the table does not depend on how the records were
 chunked or on which worker ran what: record *i* is seeded by
 ``SeedSequence(seed, spawn_key=(i,))`` (see :func:`pounding.simulate`).
@@ -30,14 +31,15 @@ Layout of ``output_dir``::
     sweep.html                           the design chart (static, Bokeh)
     points/<key>/point.json              the point's case data and varied values
     points/<key>/estimate.json           closed-form figures
-    points/<key>/chunk-<first>-<count>.json   sums over records first .. first + count - 1
+    points/<key>/chunk-<first>-<count>.json   sums over records first .. first + count - 1, and each one's F_max
 
 This package imports nothing heavy at load (the CLI builds its parser from
 :func:`add_arguments`): Dask, pandas and Bokeh are imported when used.
 
 Modules: :mod:`.spec` (the ``--vary`` specs), :mod:`.points` (the case file
 with the varied keys set), :mod:`.work` (what runs on Dask workers),
-:mod:`.store` (the files), :mod:`.engine` (the sweep itself and its table),
+:mod:`.store` (the files), :mod:`.engine` (the sweep itself, and :func:`monte_carlo_forces`, every
+record's F_max at adjusted cases for fragility curves and force spectra), :mod:`.table` (the table),
 :mod:`.chart` (the design chart), :mod:`.cli` (``pounding sweep``).
 """
 
@@ -48,9 +50,10 @@ from .engine import (
     SERIAL,
     TABLE_FORMATS,
     SweepInterrupted,
-    monte_carlo_summary,
+    monte_carlo_forces,
     sweep,
 )
+from .table import monte_carlo_summary
 from .spec import parse_values, parse_vary
 from .work import DEFAULT_TOLERANCE, chunk_sums, point_estimate
 
@@ -64,6 +67,7 @@ __all__ = [
     "SweepInterrupted",
     "add_arguments",
     "chunk_sums",
+    "monte_carlo_forces",
     "monte_carlo_summary",
     "parse_values",
     "parse_vary",

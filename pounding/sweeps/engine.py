@@ -4,20 +4,21 @@ chunks' totals, the Monte Carlo summary and the table."""
 from __future__ import annotations
 
 import itertools
-import math
 import os
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
-from fractions import Fraction
 from pathlib import Path
+
+import numpy as np
 
 from .. import defaults
 from ..errors import CaseError
-from ..output import check_folder, check_target, write_atomic
+from ..output import check_folder, check_target
 from .chart import write_chart
-from .points import Point, case_data, sweep_points
+from .points import Point, adjusted_points, case_data, sweep_points
 from .spec import normalized_vary
 from .store import FIELD, Store, write_json
+from .table import need_parquet, table as summary_table, write_table
 from .work import DEFAULT_TOLERANCE, chunk_sums, point_estimate, warm
 
 CHUNK_RECORDS = 100
@@ -116,8 +117,8 @@ def _run_tasks(tasks: list[_Task], client, seed: int, tolerance: float, done: Ca
 
     def call(task: _Task):
         if task.is_chunk:
-            return chunk_sums, (task.point.data, seed, task.first, task.count, tolerance)
-        return point_estimate, (task.point.data,)
+            return chunk_sums, (task.point.data, seed, task.first, task.count, tolerance, task.point.adjustment)
+        return point_estimate, (task.point.data, task.point.adjustment)
 
     if client is None:
         for task in tasks:
@@ -152,11 +153,11 @@ def _run_tasks(tasks: list[_Task], client, seed: int, tolerance: float, done: Ca
             future.cancel()
 
 
-def _missing(points: list[Point], chunks: list[tuple[int, int]], store: Store) -> tuple[list[_Task], int]:
+def _missing(points: list[Point], chunks: list[tuple[int, int]], store: Store, estimates: bool = True) -> tuple[list[_Task], int]:
     """The tasks whose files are missing (or unreadable), and the number of chunks found done."""
     tasks, found = [], 0
     for point in points:
-        if store.estimate(point) is None:
+        if estimates and store.estimate(point) is None:
             tasks.append(_Task(point))
         for first, count in chunks:
             if store.chunk(point, first, count) is None:
@@ -200,11 +201,82 @@ def _compute(tasks: list[_Task], store: Store, scheduler, workers, seed: int, to
         client = _Client(scheduler, workers)
         try:
             if client.client is not None:
-                client.client.run(warm, tasks[0].point.data)
+                client.client.run(warm, tasks[0].point.data, tasks[0].point.adjustment)
             _run_tasks(tasks, client.client, seed, tolerance, finished)
         finally:
             client.close()
     return computed
+
+
+def _check_sizes(records, seed, chunk_records, workers, max_chunks, tolerance) -> None:
+    _check_whole("records", records, 1)
+    _check_whole("seed", seed, 0)
+    _check_whole("chunk_records", chunk_records, 1)
+    if workers is not None:
+        _check_whole("workers", workers, 1)
+    if max_chunks is not None:
+        _check_whole("max_chunks", max_chunks, 0)
+    from ..simulation import Settings
+
+    Settings(tolerance=tolerance)  # validates it
+
+
+def _run_points(points: list[Point], chunks, store: Store, scheduler, workers, seed: int, tolerance: float,
+                progress, max_chunks: int | None, estimates: bool) -> tuple[int, int]:
+    """Compute every missing chunk (and, with ``estimates``, closed-form figures) of ``points``; returns the
+    chunks computed and those found done. :class:`SweepInterrupted` once ``max_chunks`` are computed."""
+    tasks, reused = _missing(points, chunks, store, estimates)
+    missing = sum(task.is_chunk for task in tasks)
+    if max_chunks is not None and missing > max_chunks:
+        tasks = _within_budget(tasks, max_chunks)
+    records = sum(count for _, count in chunks)
+    found = records * len(points) - sum(task.count for task in tasks if task.is_chunk)
+    computed = _compute(tasks, store, scheduler, workers, seed, tolerance, progress, found, records * len(points))
+    if computed < missing:
+        raise SweepInterrupted(
+            f"stopped after {computed} chunk(s), {missing - computed} still missing; rerun to resume", computed, missing - computed
+        )
+    return computed, reused
+
+
+def monte_carlo_forces(
+    case,
+    adjustments: Sequence[Mapping],
+    records: int,
+    seed: int = defaults.SEED,
+    output_dir: str | os.PathLike = "study",
+    scheduler=None,
+    chunk_records: int = CHUNK_RECORDS,
+    progress: Callable[[int, int], None] | None = None,
+    *,
+    workers: int | None = None,
+    tolerance: float = DEFAULT_TOLERANCE,
+    max_chunks: int | None = None,
+    label: str = "study",
+) -> list[np.ndarray]:
+    """Every record's F_max [N] at each adjusted case (:func:`pounding.case_scaling.adjusted`: another PGA, other
+    periods), on the sweep's engine: the same chunks, Dask, resumable files in ``output_dir`` and numbers that
+    do not depend on the workers or the chunking (record i of a point is seeded as in :func:`pounding.simulate`).
+
+    ``case`` is a preset name, a TOML case file or a parsed case file (dict); ``adjustments`` one mapping per
+    point; ``label`` names the study in ``output_dir``'s manifest. Returns one array per point, in record order.
+    Raises as :func:`sweep` does; an adjustment that makes the case invalid names its key.
+    """
+    _check_sizes(records, seed, chunk_records, workers, max_chunks, tolerance)
+    data, name = case_data(case)
+    points = adjusted_points(data, name, adjustments, seed, tolerance)
+    check_folder(output_dir, FIELD)
+    store = Store(Path(output_dir))
+    store.write_manifest({
+        "study": label, "case": name, "records": records, "seed": seed, "chunk_records": chunk_records, "tolerance": tolerance,
+        "points": [{"point": p.index, "key": p.key, **p.adjustment} for p in points],
+    })
+    for point in points:
+        store.write_point(point, [])
+    chunks = _chunks(records, chunk_records)
+    _run_points(points, chunks, store, scheduler, workers, seed, tolerance, progress, max_chunks, estimates=False)
+    return [np.concatenate([np.asarray(store.chunk(point, first, count)["force_max_values"], dtype=float)
+                            for first, count in chunks]) for point in points]
 
 
 def sweep(
@@ -297,20 +369,11 @@ def sweep(
     pounding.SimulationError
         A record failed to integrate.
     """
-    _check_whole("records", records, 1)
-    _check_whole("seed", seed, 0)
-    _check_whole("chunk_records", chunk_records, 1)
-    if workers is not None:
-        _check_whole("workers", workers, 1)
-    if max_chunks is not None:
-        _check_whole("max_chunks", max_chunks, 0)
+    _check_sizes(records, seed, chunk_records, workers, max_chunks, tolerance)
     if table_format not in TABLE_FORMATS:
         raise CaseError("format", f"unknown table format {table_format!r}; allowed: {', '.join(TABLE_FORMATS)}")
     if table_format == "parquet":
-        _need_parquet()
-    from ..simulation import Settings
-
-    Settings(tolerance=tolerance)  # validates it
+        need_parquet()
     data, name = case_data(case)
     varied = normalized_vary(vary)
     paths = [path for path, _ in varied]
@@ -330,116 +393,12 @@ def sweep(
         store.write_point(point, paths)
 
     chunks = _chunks(records, chunk_records)
-    tasks, reused = _missing(points, chunks, store)
-    missing = sum(task.is_chunk for task in tasks)
-    if max_chunks is not None and missing > max_chunks:
-        tasks = _within_budget(tasks, max_chunks)
-    found = sum(count for _, count in chunks) * len(points) - sum(task.count for task in tasks if task.is_chunk)
-    computed = _compute(tasks, store, scheduler, workers, seed, tolerance, progress, found, records * len(points))
-    if computed < missing:
-        raise SweepInterrupted(
-            f"stopped after {computed} chunk(s), {missing - computed} still missing; rerun to resume", computed, missing - computed
-        )
-
-    table = _table(points, paths, chunks, store, records, seed)
+    computed, reused = _run_points(points, chunks, store, scheduler, workers, seed, tolerance, progress, max_chunks, estimates=True)
+    table = summary_table(points, paths, chunks, store, records, seed)
     table.attrs.update(chunks_computed=computed, chunks_reused=reused, units=units)
-    _write_table(table, table_path, table_format)
+    write_table(table, table_path, table_format)
     table.attrs["table"] = str(table_path)
     table.attrs["chart"] = None
     if chart:
         table.attrs["chart"] = str(write_chart(table, paths, store.root / "sweep.html", units=units, title=f"Sweep of {name}"))
     return table
-
-
-def _totals(point: Point, chunks: list[tuple[int, int]], store: Store) -> dict:
-    """The chunks' sums added up, exactly."""
-    n = pounding = impacts = 0
-    force = square = velocity = Fraction(0)
-    force_max = penetration_max = 0.0
-    for first, count in chunks:
-        chunk = store.chunk(point, first, count)
-        n += chunk["records"]
-        force += Fraction(chunk["force_sum"])
-        square += Fraction(chunk["force_square_sum"])
-        velocity += Fraction(chunk["impact_velocity_sum"])
-        pounding += chunk["pounding_records"]
-        impacts += chunk["impacts"]
-        force_max = max(force_max, chunk["force_max"])
-        penetration_max = max(penetration_max, chunk["penetration_max"])
-    return dict(n=n, force=force, square=square, velocity=velocity, pounding=pounding, impacts=impacts,
-                force_max=force_max, penetration_max=penetration_max)
-
-
-def monte_carlo_summary(totals: dict) -> dict:
-    """Mean, standard error and 95 % CI of F_max [N] from exact sums (see :func:`chunk_sums`).
-
-    The mean is the exact mean correctly rounded; the variance is formed
-    exactly, so there is no cancellation in sum(F^2) - sum(F)^2 / n.
-    """
-    from scipy.special import stdtrit
-
-    n = totals["n"]
-    mean = totals["force"] / n
-    if n >= 2:
-        variance = (totals["square"] - totals["force"] * mean) / (n - 1)
-        std_error = math.sqrt(float(variance / n))
-        half = float(stdtrit(n - 1, 0.975)) * std_error
-    else:
-        std_error = half = math.inf
-    mean = float(mean)
-    return {
-        "mc_force_mean_N": mean,
-        "mc_force_std_error_N": std_error,
-        "mc_force_ci_low_N": mean - half,
-        "mc_force_ci_high_N": mean + half,
-        "mc_force_max_N": totals["force_max"],
-        "mc_pounding_fraction": totals["pounding"] / n,
-        "mc_impacts_mean": totals["impacts"] / n,
-        "mc_impact_velocity_mean_m_s": float(totals["velocity"] / n),
-        "mc_penetration_max_m": totals["penetration_max"],
-    }
-
-
-def _table(points: list[Point], paths: list[str], chunks, store: Store, records: int, seed: int):
-    import pandas as pd
-
-    def number(value):
-        return math.nan if value is None else value
-
-    rows = []
-    for point in points:
-        estimate = store.estimate(point)
-        rows.append({
-            "point": point.index,
-            **dict(zip(paths, point.values)),
-            "records": records,
-            "seed": seed,
-            "estimate_force_N": number(estimate["force"]),
-            "paper_force_N": number(estimate["paper_force"]),
-            "estimate_pounding_probability": number(estimate["pounding_probability"]),
-            "estimate_impacts": number(estimate["impacts"]),
-            "required_gap_m": number(estimate["required_gap"]),
-            "sigma_relative_displacement_m": number(estimate["sigma_relative_displacement"]),
-            **monte_carlo_summary(_totals(point, chunks, store)),
-            "estimate_warnings": "; ".join(estimate["warnings"]),
-            "key": point.key,
-        })
-    return pd.DataFrame(rows)
-
-
-def _need_parquet() -> None:
-    try:
-        import pyarrow  # noqa: F401
-    except ImportError:
-        raise CaseError("format", "parquet needs pyarrow (python -m pip install pyarrow); or use csv") from None
-
-
-def _write_table(table, path: Path, table_format: str) -> None:
-    import io
-
-    if table_format == "csv":
-        write_atomic(path, table.to_csv(index=False), FIELD, make_parents=True)
-    else:
-        buffer = io.BytesIO()
-        table.to_parquet(buffer, index=False)
-        write_atomic(path, buffer.getvalue(), FIELD, make_parents=True)

@@ -9,13 +9,14 @@ import itertools
 import json
 import os
 from collections.abc import Mapping
-from dataclasses import dataclass
+from collections.abc import Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import CaseError
 from .spec import check_point_count
 
-_FILE_FORMAT = 1  # bump when the chunk files' meaning changes: old ones are then ignored
+_FILE_FORMAT = 2  # bump when the chunk files' meaning changes: old ones are then ignored (2: every record's F_max kept)
 
 
 def case_data(case) -> tuple[dict, str]:
@@ -101,6 +102,7 @@ class Point:
     values: tuple[float, ...]  # one per varied path, in the case's units
     data: dict  # the case file with the varied keys set
     key: str  # hash of the physics, the seed and the tolerance
+    adjustment: dict = field(default_factory=dict)  # applied to the loaded case (pounding.case_scaling.adjusted), SI
 
 
 def sweep_points(data: dict, name: str, vary: list[tuple[str, tuple[float, ...]]], seed: int, tolerance: float) -> list[Point]:
@@ -125,6 +127,26 @@ def sweep_points(data: dict, name: str, vary: list[tuple[str, tuple[float, ...]]
     return points
 
 
-def _point_key(data: dict, seed: int, tolerance: float) -> str:
-    text = json.dumps({"format": _FILE_FORMAT, "case": _physics(data), "seed": seed, "tolerance": tolerance}, sort_keys=True)
+def adjusted_points(data: dict, name: str, adjustments: Sequence[Mapping], seed: int, tolerance: float) -> list[Point]:
+    """One point per adjustment of the case file ``data`` (:func:`pounding.case_scaling.adjusted`), each
+    checked here: the case is loaded once, and an adjustment that makes it invalid names its key."""
+    from ..case import case_from_dict
+    from ..case_scaling import PeakGroundAcceleration, adjusted
+
+    check_point_count([("adjustments", tuple(range(len(adjustments))))])
+    case = case_from_dict(data, name=name)
+    scaling = PeakGroundAcceleration(case) if any("pga" in a for a in adjustments) else None
+    points = []
+    for index, adjustment in enumerate(adjustments):
+        adjustment = {key: float(value) for key, value in adjustment.items()}
+        adjusted(case, adjustment, scaling)
+        points.append(Point(index, (), data, _point_key(data, seed, tolerance, adjustment), adjustment))
+    return points
+
+
+def _point_key(data: dict, seed: int, tolerance: float, adjustment: Mapping | None = None) -> str:
+    content = {"format": _FILE_FORMAT, "case": _physics(data), "seed": seed, "tolerance": tolerance}
+    if adjustment:
+        content["adjustment"] = dict(adjustment)
+    text = json.dumps(content, sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()[:20]

@@ -66,6 +66,7 @@ class Store:
 
     def chunk(self, point: Point, first: int, count: int) -> dict | None:
         value = _read_json(self.chunk_path(point, first, count))
-        if not (isinstance(value, dict) and value.get("first") == first and value.get("records") == count):
+        if not (isinstance(value, dict) and value.get("first") == first and value.get("records") == count
+                and len(value.get("force_max_values", ())) == count):
             return None
         return value

@@ -16,7 +16,15 @@ def _fraction_text(value: Fraction) -> str:
     return f"{value.numerator}/{value.denominator}"
 
 
-def chunk_sums(data: dict, seed: int, first: int, count: int, tolerance: float = DEFAULT_TOLERANCE) -> dict:
+def _case(data: dict, adjustment: dict | None):
+    from ..case import case_from_dict
+    from ..case_scaling import adjusted
+
+    return adjusted(case_from_dict(data, name=str(data.get("name", "case"))), adjustment)
+
+
+def chunk_sums(data: dict, seed: int, first: int, count: int, tolerance: float = DEFAULT_TOLERANCE,
+               adjustment: dict | None = None) -> dict:
     """Monte Carlo over records ``first .. first + count - 1`` of one point, reduced to sums.
 
     Runs on one thread (a Dask worker runs one task per thread).
@@ -29,20 +37,21 @@ def chunk_sums(data: dict, seed: int, first: int, count: int, tolerance: float =
         Seed of the study, first record, number of records.
     tolerance : float
         Relative tolerance of the integrator [-].
+    adjustment : dict, optional
+        Applied to the loaded case (:func:`pounding.case_scaling.adjusted`: another PGA, other periods).
 
     Returns
     -------
     dict
-        JSON-ready: ``records``; exact sums (as ``"p/q"`` strings) of F_max
+        JSON-ready: ``records``; every record's F_max [N] in record order (``force_max_values``); exact sums (as ``"p/q"`` strings) of F_max
         [N], F_max^2 [N^2] and of the peak approach velocity at impact [m/s];
         the number of records with pounding and of impacts; the largest
         F_max [N] and penetration [m]. Sums of exact rationals do not depend
         on the order of addition: any chunking gives the same totals.
     """
-    from ..case import case_from_dict
     from ..simulation import Settings, simulate
 
-    case = case_from_dict(data, name=str(data.get("name", "case")))
+    case = _case(data, adjustment)
     result = simulate(case, records=count, seed=seed, settings=Settings(tolerance=tolerance, workers=1), first_record=first)
     forces = [Fraction(float(f)) for f in result.force_max]
     return {
@@ -55,20 +64,20 @@ def chunk_sums(data: dict, seed: int, first: int, count: int, tolerance: float =
         "impacts": int(result.impacts.sum()),
         "force_max": float(result.force_max.max()),
         "penetration_max": float(result.penetration_max.max()),
+        "force_max_values": [float(f) for f in result.force_max],
     }
 
 
-def point_estimate(data: dict) -> dict:
+def point_estimate(data: dict, adjustment: dict | None = None) -> dict:
     """The closed-form figures of one point (``pounding.estimator.estimate``), JSON-ready, SI.
 
     An estimate that cannot be made (e.g. a record too short for Davenport's
     peak factor) gives None figures and its reason in ``warnings``.
     """
-    from ..case import case_from_dict
     from ..errors import ConvergenceError
     from ..estimator import estimate
 
-    case = case_from_dict(data, name=str(data.get("name", "case")))
+    case = _case(data, adjustment)
     try:
         result = estimate(case)
     except (CaseError, ConvergenceError) as error:
@@ -88,13 +97,13 @@ def point_estimate(data: dict) -> dict:
 _WARM = False
 
 
-def warm(data: dict) -> None:
+def warm(data: dict, adjustment: dict | None = None) -> None:
     """Load the numba kernels in this process once (about 1 s from the disk cache)."""
     global _WARM
     if not _WARM:
         try:
-            point_estimate(data)
-            chunk_sums(data, 0, 0, 1)
+            point_estimate(data, adjustment)
+            chunk_sums(data, 0, 0, 1, DEFAULT_TOLERANCE, adjustment)
         except Exception:  # noqa: BLE001  warming is best effort: the task itself will report the error
             return
         _WARM = True

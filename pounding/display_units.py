@@ -1,12 +1,13 @@
-"""Display units: how numbers are shown on the page (:class:`Display`), one
-per unit system of the inputs; results in the units an engineer reads them in."""
+"""Display units: how numbers are shown on a page or a terminal (:class:`Display`),
+one per unit system of the inputs; results in the units an engineer reads them in.
+Light: the command line imports it."""
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
 
-from ..units import KGF_CM_S, SI, UNIT_SYSTEMS, UnitSystem
+from .units import KGF_CM_S, SI, UNIT_SYSTEMS, UnitSystem
 
 # --- display units -------------------------------------------------------------
 
@@ -42,7 +43,10 @@ class Display:
             return "n/a"
         if self.force_unit == "kN" and abs(value) >= 1e6:
             return f"{value / 1e6:.4g} MN"
-        return f"{value / self.force_scale:.4g} {self.force_unit}"
+        shown = value / self.force_scale
+        if 1e4 <= abs(shown) < 1e15:  # 31,540 kgf, not 3.154e+04 kgf
+            return f"{shown:,.0f} {self.force_unit}"
+        return f"{shown:.4g} {self.force_unit}"
 
     def length(self, value: float | None) -> str:
         if value is None or not math.isfinite(value):
@@ -64,7 +68,7 @@ DISPLAY_UNITS = {
 def display(units: str) -> Display:
     """The :class:`Display` of a unit system's name ("SI" or "kgf-cm-s")."""
     if units not in UNIT_SYSTEMS:
-        from ..errors import CaseError
+        from .errors import CaseError
 
         raise CaseError("units", f"unknown unit system {units!r}; allowed: {', '.join(UNIT_SYSTEMS)}")
     return DISPLAY_UNITS[units]

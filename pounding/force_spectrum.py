@@ -1,0 +1,166 @@
+"""The stochastic pounding-force spectrum: the mean and the 84th percentile of
+F_max against the fundamental period of building 1, building 2 at a fixed
+period or a fixed period ratio, closed form (G31 at each pair of periods, F2)
+and Monte Carlo on the sweep engine. docs/fragility.md, F5; the random
+counterpart of Jankowski's (2006) deterministic pounding force response spectrum.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import defaults
+from .case import Case, as_case
+from .case_scaling import with_fundamental_periods
+from .errors import CaseError, ConvergenceError, finite_number, quote
+from .fragility import check_intensities
+from .monte_carlo_result import quantile_interval
+
+__all__ = ["ForceSpectrum", "MonteCarloSpectrum", "force_spectrum"]
+
+
+@dataclass(frozen=True, eq=False)
+class MonteCarloSpectrum:
+    """Every record's F_max [N] at each pair of periods."""
+
+    force_max: tuple[np.ndarray, ...]
+    seed: int
+
+    @property
+    def records(self) -> int:
+        return int(self.force_max[0].size)
+
+    @property
+    def force_mean(self) -> np.ndarray:
+        return np.array([float(np.mean(f)) for f in self.force_max])
+
+    def force_mean_interval(self) -> np.ndarray:
+        """95 % Student-t interval of each mean [N], shape (periods, 2)."""
+        from scipy.special import stdtrit
+
+        n = self.records
+        half = float(stdtrit(n - 1, 0.975)) * np.array([np.std(f, ddof=1) for f in self.force_max]) / np.sqrt(n)
+        return np.column_stack([self.force_mean - half, self.force_mean + half])
+
+    def quantile(self, probability: float) -> tuple[np.ndarray, np.ndarray]:
+        """The empirical quantile [N] at each pair of periods, and its distribution-free 95 % interval (periods, 2)."""
+        rows = [quantile_interval(f, probability) for f in self.force_max]
+        return np.array([r[0] for r in rows]), np.array([[r[1], r[2]] for r in rows], dtype=float)
+
+
+@dataclass(frozen=True, eq=False)
+class ForceSpectrum:
+    """E[F_max] and its 84th percentile against building 1's fundamental period.
+
+    Attributes
+    ----------
+    case : Case
+        The case as given.
+    period1, period2 : ndarray
+        Fundamental periods of building 1 and 2 at each point [s].
+    force_mean, force_84 : ndarray
+        Closed-form E[F_max] (G19) and 84th percentile (G31) [N].
+    pounding_probability : ndarray
+        Closed-form P(at least one impact) (G31 at F = 0) [-].
+    monte_carlo : MonteCarloSpectrum or None
+    """
+
+    case: Case
+    period1: np.ndarray
+    period2: np.ndarray
+    force_mean: np.ndarray
+    force_84: np.ndarray
+    pounding_probability: np.ndarray
+    monte_carlo: MonteCarloSpectrum | None = None
+
+    def to_dict(self) -> dict:
+        """JSON-ready: periods in s, forces in N."""
+        out = {
+            "case": self.case.name,
+            "period1": self.period1.tolist(),
+            "period2": self.period2.tolist(),
+            "force_mean": self.force_mean.tolist(),
+            "force_84": self.force_84.tolist(),
+            "pounding_probability": self.pounding_probability.tolist(),
+        }
+        if self.monte_carlo is not None:
+            mc = self.monte_carlo
+            q84, q84_interval = mc.quantile(0.84)
+            out.update(
+                records=mc.records,
+                seed=None if self.case.recorded else mc.seed,
+                force_mean_monte_carlo=mc.force_mean.tolist(),
+                force_mean_monte_carlo_interval=mc.force_mean_interval().tolist(),
+                force_84_monte_carlo=q84.tolist(),
+                force_84_monte_carlo_interval=q84_interval.tolist(),
+                pounding_fraction_monte_carlo=[float(np.mean(f > 0)) for f in mc.force_max],
+            )
+        out["units"] = {"period": "s", "force": "N"}
+        return out
+
+
+def _periods_of_building_2(period1: np.ndarray, period_ratio, period2) -> np.ndarray:
+    if (period_ratio is None) == (period2 is None):
+        raise CaseError("period_ratio", "give one of period_ratio (T2 / T1) and period2 (s)")
+    field = "period_ratio" if period2 is None else "period2"
+    value = finite_number(field, period_ratio if period2 is None else period2)
+    if not value > 0:
+        raise CaseError(field, f"must be > 0, got {quote(value)}")
+    return period1 * value if period2 is None else np.full(period1.shape, value)
+
+
+def force_spectrum(
+    case,
+    period1,
+    period_ratio: float | None = None,
+    period2: float | None = None,
+    records: int = 0,
+    seed: int = defaults.SEED,
+    work_dir: str | os.PathLike | None = None,
+    scheduler=None,
+    workers: int | None = None,
+    progress: Callable[[int, int], None] | None = None,
+) -> ForceSpectrum:
+    """The force spectrum of ``case`` over building 1's fundamental periods ``period1`` [s].
+
+    Building 2's period is ``period_ratio`` x T1 or ``period2`` [s] (give one). Each building is made stiffer or
+    softer, its masses, yield drifts, damping ratio, the gap, the restitution and the ground motion held
+    (:func:`~pounding.case_scaling.with_fundamental_periods`). ``records`` Monte Carlo records a point (0: none;
+    at least :data:`~pounding.defaults.SPECTRUM_MIN_RECORDS`); ``seed``, ``work_dir``, ``scheduler``,
+    ``workers``, ``progress`` as :func:`~pounding.fragility.fragility_curve`.
+    """
+    from .force_distribution import force_distribution_of
+
+    period1 = check_intensities(period1, "period1")
+    periods2 = _periods_of_building_2(period1, period_ratio, period2)
+    if isinstance(records, bool) or not isinstance(records, (int, np.integer)) or records < 0:
+        raise CaseError("records", f"must be a whole number >= 0, got {quote(records)}")
+    if 0 < records < defaults.SPECTRUM_MIN_RECORDS:
+        raise CaseError("records", f"must be 0 or at least {defaults.SPECTRUM_MIN_RECORDS} for an interval of the 84th "
+                                   f"percentile, got {records}")
+    base = case if isinstance(case, Case) else as_case(case)
+    distributions = []
+    for t1, t2 in zip(period1, periods2):
+        try:
+            distributions.append(force_distribution_of(with_fundamental_periods(base, t1, t2)))
+        except ConvergenceError as error:
+            raise ConvergenceError(f"at T1 = {t1:.4g} s, T2 = {t2:.4g} s: {error}") from None
+    spectrum = ForceSpectrum(
+        case=base, period1=period1, period2=periods2,
+        force_mean=np.array([d.mean() for d in distributions]),
+        force_84=np.array([d.quantile(0.84) for d in distributions]),
+        pounding_probability=np.array([1.0 - d.no_impact_probability for d in distributions]),
+    )
+    if not records:
+        return spectrum
+    if isinstance(case, Case):
+        raise CaseError("case", "the Monte Carlo runs on the case file: give a preset name, a path or the parsed file")
+    from .monte_carlo_study import forces_at
+
+    adjustments = [{"period1": float(t1), "period2": float(t2)} for t1, t2 in zip(period1, periods2)]
+    forces = forces_at(case, adjustments, records, seed, work_dir, scheduler, workers, progress, "force spectrum")
+    return ForceSpectrum(**{**spectrum.__dict__, "monte_carlo": MonteCarloSpectrum(tuple(forces), seed)})

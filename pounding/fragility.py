@@ -1,0 +1,253 @@
+"""Fragility curves of the pounding force: P(F_max > capacity) against the
+expected peak ground acceleration, closed form (G31 at each PGA, F1) and Monte
+Carlo on the sweep engine, each with the lognormal fragility engineers use,
+fitted by maximum likelihood (F3-F4). docs/fragility.md.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.special import log_ndtr, ndtr
+
+from . import defaults
+from .case import Case, as_case
+from .case_scaling import PeakGroundAcceleration
+from .errors import CaseError, ConvergenceError, check_limit, finite_number, quote
+from .force_distribution import force_distribution_of
+from .monte_carlo_result import wilson_interval
+from .units import STANDARD_GRAVITY
+
+__all__ = ["FragilityCurve", "LognormalFragility", "MonteCarloCounts", "check_intensities", "fit_lognormal", "fragility_curve"]
+
+DISPERSION_RANGE = (0.01, 5.0)
+"""Dispersions beta the lognormal fit may take [-]: a fit at an end says the data do not pin it (all or none exceed
+but at one PGA, or a curve flat over the range)."""
+
+
+@dataclass(frozen=True)
+class LognormalFragility:
+    """P(F_max > capacity | PGA = a) = Phi(ln(a / median) / dispersion) (F3).
+
+    Attributes
+    ----------
+    median : float
+        The PGA at which the probability is 1/2 [m/s^2].
+    dispersion : float
+        beta, the standard deviation of ln(PGA capacity) [-].
+    at_bound : bool
+        The fit lies at an end of :data:`DISPERSION_RANGE`: the data do not pin the dispersion.
+    """
+
+    median: float
+    dispersion: float
+    at_bound: bool = False
+
+    def probability(self, pga) -> np.ndarray:
+        """The fitted probability at ``pga`` [m/s^2]."""
+        return ndtr(np.log(np.asarray(pga, dtype=float) / self.median) / self.dispersion)
+
+    def to_dict(self) -> dict:
+        return {"median_pga": self.median / STANDARD_GRAVITY, "dispersion": self.dispersion, "at_bound": self.at_bound}
+
+
+def fit_lognormal(pga, exceeding, trials) -> LognormalFragility | None:
+    """The lognormal fragility of largest likelihood (F4; Baker 2015, Eq. 11):
+    max over (median, beta) of sum_j [z_j ln p_j + (n_j - z_j) ln(1 - p_j)], p_j the
+    curve at ``pga`` [m/s^2], z_j of n_j exceeding (``trials``; fractions of 1 for a
+    closed-form curve). None where nothing, or everything, exceeds: no curve is pinned."""
+    pga = np.asarray(pga, dtype=float)
+    exceeding, trials = np.asarray(exceeding, dtype=float), np.broadcast_to(np.asarray(trials, dtype=float), pga.shape)
+    if exceeding.sum() <= 0.0 or (trials - exceeding).sum() <= 0.0:
+        return None
+    from scipy.optimize import minimize
+
+    log_pga = np.log(pga)
+
+    def negative_log_likelihood(theta):
+        z = (log_pga - theta[0]) / theta[1]
+        return -float(np.sum(exceeding * log_ndtr(z) + (trials - exceeding) * log_ndtr(-z)))
+
+    fractions = exceeding / trials
+    crossing = np.flatnonzero(fractions >= 0.5)
+    start = log_pga[crossing[0]] if crossing.size else log_pga[-1] + 0.5
+    bounds = [(log_pga[0] - 10.0, log_pga[-1] + 10.0), DISPERSION_RANGE]
+    best = min((minimize(negative_log_likelihood, (start, beta), method="L-BFGS-B", bounds=bounds) for beta in (0.2, 0.6)),
+               key=lambda result: result.fun)
+    median, dispersion = math.exp(best.x[0]), float(best.x[1])
+    at_bound = not DISPERSION_RANGE[0] * 1.001 < dispersion < DISPERSION_RANGE[1] * 0.999
+    return LognormalFragility(median, dispersion, at_bound)
+
+
+@dataclass(frozen=True, eq=False)
+class MonteCarloCounts:
+    """The Monte Carlo side of a fragility curve: every record's F_max [N] at each PGA."""
+
+    force_max: tuple[np.ndarray, ...]
+    seed: int
+
+    @property
+    def records(self) -> int:
+        return int(self.force_max[0].size)
+
+    def exceeding(self, capacity: float) -> np.ndarray:
+        """Records with F_max > capacity [N] at each PGA."""
+        return np.array([int(np.sum(forces > capacity)) for forces in self.force_max])
+
+    def intervals(self, capacity: float) -> np.ndarray:
+        """Wilson's 95 % interval of the exceeding fraction at each PGA, shape (PGAs, 2)."""
+        return np.array([wilson_interval(int(k), self.records) for k in self.exceeding(capacity)])
+
+
+@dataclass(frozen=True, eq=False)
+class FragilityCurve:
+    """P(F_max > capacity) against the expected PGA, closed form and (optionally) Monte Carlo.
+
+    Attributes
+    ----------
+    case : Case
+        The case at its own intensity.
+    capacity : float
+        [N].
+    pga : ndarray
+        Expected peak ground accelerations [m/s^2] (recorded motions: every record's peak).
+    probability : ndarray
+        Closed-form P(F_max > capacity) at each PGA (G31) [-].
+    force_expected, force_84 : ndarray
+        Closed-form E[F_max] and 84th percentile at each PGA [N].
+    reference_pga : float
+        The case's own expected PGA [m/s^2].
+    lognormal : LognormalFragility or None
+        Fitted to the closed-form curve.
+    monte_carlo : MonteCarloCounts or None
+    lognormal_monte_carlo : LognormalFragility or None
+        Fitted to the Monte Carlo counts.
+    """
+
+    case: Case
+    capacity: float
+    pga: np.ndarray
+    probability: np.ndarray
+    force_expected: np.ndarray
+    force_84: np.ndarray
+    reference_pga: float
+    lognormal: LognormalFragility | None
+    monte_carlo: MonteCarloCounts | None = None
+    lognormal_monte_carlo: LognormalFragility | None = None
+
+    def to_dict(self) -> dict:
+        """JSON-ready: accelerations in g, forces in N."""
+        fit = lambda value: None if value is None else value.to_dict()  # noqa: E731
+        out = {
+            "case": self.case.name,
+            "capacity": self.capacity,
+            "pga": (self.pga / STANDARD_GRAVITY).tolist(),
+            "case_pga": self.reference_pga / STANDARD_GRAVITY,
+            "probability": self.probability.tolist(),
+            "force_expected": self.force_expected.tolist(),
+            "force_84": self.force_84.tolist(),
+            "lognormal": fit(self.lognormal),
+        }
+        if self.monte_carlo is not None:
+            out.update(
+                records=self.monte_carlo.records,
+                seed=None if self.case.recorded else self.monte_carlo.seed,
+                exceeding_records=self.monte_carlo.exceeding(self.capacity).tolist(),
+                probability_monte_carlo=(self.monte_carlo.exceeding(self.capacity) / self.monte_carlo.records).tolist(),
+                probability_monte_carlo_interval=self.monte_carlo.intervals(self.capacity).tolist(),
+                force_expected_monte_carlo=[float(np.mean(f)) for f in self.monte_carlo.force_max],
+                lognormal_monte_carlo=fit(self.lognormal_monte_carlo),
+            )
+        out["units"] = {"pga": "g", "capacity": "N", "force": "N", "median_pga": "g"}
+        return out
+
+
+def check_intensities(values, field: str = "pga") -> np.ndarray:
+    """Finite values > 0, strictly increasing, at least two, within :data:`~pounding.defaults.MAX_SWEEP_POINTS`."""
+    try:
+        values = np.array(values, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise CaseError(field, f"must be a list of numbers, got {quote(values)}") from None
+    if values.size < 2:
+        raise CaseError(field, f"needs at least 2 values, got {values.size}")
+    check_limit(field, values.size, defaults.MAX_SWEEP_POINTS, "points", "give fewer values")
+    if not np.all(np.isfinite(values)) or not np.all(values > 0):
+        raise CaseError(field, "every value must be a finite number > 0")
+    if not np.all(np.diff(values) > 0):
+        raise CaseError(field, "must increase strictly")
+    return values
+
+
+def fragility_curve(
+    case,
+    capacity: float,
+    pga,
+    records: int = 0,
+    seed: int = defaults.SEED,
+    work_dir: str | os.PathLike | None = None,
+    scheduler=None,
+    workers: int | None = None,
+    progress: Callable[[int, int], None] | None = None,
+) -> FragilityCurve:
+    """P(F_max > ``capacity``) at each expected PGA, closed form and, with ``records``, Monte Carlo.
+
+    Parameters
+    ----------
+    case : preset name, path of a case file, dict (the parsed file), or Case (closed form only)
+    capacity : float
+        [N], > 0.
+    pga : array_like
+        Expected peak ground accelerations [m/s^2], > 0, increasing. The case's ground motion is scaled to each
+        (:class:`~pounding.case_scaling.PeakGroundAcceleration`; recorded motions: every record to that peak).
+    records : int
+        Monte Carlo records at each PGA (0: none); at least :data:`~pounding.defaults.FRAGILITY_MIN_RECORDS`.
+        Recorded motions: the first ``records`` of the suite.
+    seed : int
+        Seed of the Monte Carlo study.
+    work_dir : path, optional
+        Folder of the finished Monte Carlo chunks (the sweep's files): rerun with it to resume. Default: a
+        temporary folder, removed at the end.
+    scheduler, workers
+        As :func:`pounding.sweep` (None: a local Dask cluster; ``"serial"``: in this process).
+    progress : callable, optional
+        ``progress(done, total)`` in records.
+    """
+    capacity = finite_number("capacity", capacity)
+    if not capacity > 0:
+        raise CaseError("capacity", f"must be > 0 N, got {quote(capacity)}")
+    pga = check_intensities(pga)
+    if isinstance(records, bool) or not isinstance(records, (int, np.integer)) or records < 0:
+        raise CaseError("records", f"must be a whole number >= 0, got {quote(records)}")
+    if 0 < records < defaults.FRAGILITY_MIN_RECORDS:
+        raise CaseError("records", f"must be 0 or at least {defaults.FRAGILITY_MIN_RECORDS} for a useful interval, got {records}")
+    base = as_case(case) if not isinstance(case, Case) else case
+    scaling = PeakGroundAcceleration(base)
+    distributions = []
+    for value in pga:
+        try:
+            distributions.append(force_distribution_of(scaling.case_at(value)))
+        except ConvergenceError as error:
+            raise ConvergenceError(f"at PGA {value / STANDARD_GRAVITY:.4g} g: {error}") from None
+    probability = np.array([d.probability_exceeding(capacity) for d in distributions])
+    curve = FragilityCurve(
+        case=base, capacity=capacity, pga=pga, probability=probability,
+        force_expected=np.array([d.mean() for d in distributions]),
+        force_84=np.array([d.quantile(0.84) for d in distributions]),
+        reference_pga=scaling.reference, lognormal=fit_lognormal(pga, probability, 1.0),
+    )
+    if not records:
+        return curve
+    if isinstance(case, Case):
+        raise CaseError("case", "the Monte Carlo runs on the case file: give a preset name, a path or the parsed file")
+    from .monte_carlo_study import forces_at
+
+    counts = MonteCarloCounts(tuple(forces_at(case, [{"pga": float(a)} for a in pga], records, seed, work_dir, scheduler,
+                                              workers, progress, "fragility")), seed)
+    exceeding = counts.exceeding(capacity)
+    return FragilityCurve(**{**curve.__dict__, "monte_carlo": counts,
+                             "lognormal_monte_carlo": fit_lognormal(pga, exceeding, counts.records)})
+
