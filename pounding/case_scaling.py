@@ -16,6 +16,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from . import defaults
 from .case import Case
 from .errors import CaseError, finite_number, quote
 from .hazard import RecordedMotions
@@ -97,11 +98,10 @@ def _scaled_building(building, period: float, where: str):
     """``building`` with every storey stiffness times f = (T / period)^2, T its fundamental period (F2): the mode
     shapes, masses, yield drifts and damping ratio stay; an explicit storey damping is scaled by sqrt(f) to keep it."""
     period = finite_number(where, period)
-    if not period > 0:
-        raise CaseError(where, f"must be > 0 s, got {quote(period)} s")
+    low, high = defaults.PERIOD_RANGE
+    if not low <= period <= high:
+        raise CaseError(where, f"must lie in [{low:g}, {high:g}] s, got {quote(period)} s")
     factor = (float(building.periods[0]) / period) ** 2
-    if not (math.isfinite(factor) and factor > 0):
-        raise CaseError(where, f"{period:g} s gives a stiffness beyond the range of numbers; check its magnitude")
     storeys = []
     for storey in building.storeys:
         damping = None if storey.damping is None else storey.damping * math.sqrt(factor)

@@ -10,6 +10,7 @@ __all__ = [
     "ACCURACY_SEED",
     "CASE",
     "PAPER_VARIANCE",
+    "PERIOD_RANGE",
     "SEED",
     "LIMITS_VARIABLE",
     "MAX_CASE_FILE_BYTES",
@@ -46,6 +47,9 @@ SEED = 0
 """Seed of a Monte Carlo study (``pounding simulate``, ``simulate``, ``design_gap``, ``pounding sweep``)."""
 PAPER_VARIANCE = "eq28"
 """How the paper's method takes sigma_V(t) under an envelope: Eq. 28, as published (or "exact")."""
+PERIOD_RANGE = (1e-3, 1e3)
+"""Fundamental periods [s] a building may be moved to (a force spectrum): from stiffer than any storey to softer than
+any record is long; outside, the stiffness scales by more than 1e12 and the closed form loses its precision."""
 TARGET_PROBABILITY = 0.95
 """Target probability of *no* pounding during the record for the gap needed [-]."""
 MICHAELOV_N1 = 3.0
