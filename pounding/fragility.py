@@ -12,7 +12,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import log_ndtr, ndtr
+from scipy.special import log_ndtr, ndtr, ndtri
 
 from . import defaults
 from .case import Case, as_case
@@ -67,20 +67,35 @@ def fit_lognormal(pga, exceeding, trials) -> LognormalFragility | None:
     from scipy.optimize import minimize
 
     log_pga = np.log(pga)
+    staying = trials - exceeding
 
     def negative_log_likelihood(theta):
+        """F4 and its gradient in (ln median, beta): d ln Phi(z) / dz = phi(z) / Phi(z)."""
         z = (log_pga - theta[0]) / theta[1]
-        return -float(np.sum(exceeding * log_ndtr(z) + (trials - exceeding) * log_ndtr(-z)))
+        up, down = log_ndtr(z), log_ndtr(-z)
+        density = -0.5 * z * z - 0.5 * math.log(2.0 * math.pi)
+        slope = -(exceeding * np.exp(density - up) - staying * np.exp(density - down))  # d(-ln L)/dz
+        return -float(np.sum(exceeding * up + staying * down)), np.array([-slope.sum() / theta[1], -(slope * z).sum() / theta[1]])
 
-    fractions = exceeding / trials
-    crossing = np.flatnonzero(fractions >= 0.5)
-    start = log_pga[crossing[0]] if crossing.size else log_pga[-1] + 0.5
     bounds = [(log_pga[0] - 10.0, log_pga[-1] + 10.0), DISPERSION_RANGE]
-    best = min((minimize(negative_log_likelihood, (start, beta), method="L-BFGS-B", bounds=bounds) for beta in (0.2, 0.6)),
-               key=lambda result: result.fun)
+    best = min((minimize(negative_log_likelihood, start, jac=True, method="L-BFGS-B", bounds=bounds)
+                for start in _starts(log_pga, exceeding / trials)), key=lambda result: result.fun)
     median, dispersion = math.exp(best.x[0]), float(best.x[1])
     at_bound = not DISPERSION_RANGE[0] * 1.001 < dispersion < DISPERSION_RANGE[1] * 0.999
     return LognormalFragility(median, dispersion, at_bound)
+
+
+def _starts(log_pga: np.ndarray, fractions: np.ndarray) -> list[tuple[float, float]]:
+    """Where F4's search starts: the probit line through the fractions strictly between 0 and 1 (two or more),
+    else the first PGA whose fraction reaches 1/2 with two dispersions."""
+    inside = (fractions > 0.0) & (fractions < 1.0)
+    if np.count_nonzero(inside) >= 2 and np.ptp(log_pga[inside]) > 0:
+        slope, intercept = np.polyfit(log_pga[inside], ndtri(fractions[inside]), 1)
+        if slope > 0:
+            return [(-intercept / slope, float(np.clip(1.0 / slope, *DISPERSION_RANGE)))]
+    crossing = np.flatnonzero(fractions >= 0.5)
+    centre = log_pga[crossing[0]] if crossing.size else log_pga[-1] + 0.5
+    return [(centre, 0.2), (centre, 0.6)]
 
 
 @dataclass(frozen=True, eq=False)

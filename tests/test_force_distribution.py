@@ -9,14 +9,29 @@ from pounding.cli import main
 from pounding.monte_carlo_result import quantile_interval, wilson_interval
 
 
-@pytest.mark.parametrize("name", ["section5-T2-0.4", "section5-T2-0.8"])
-def test_closed_form_fractiles_against_500_records(name):
-    """Frequent pounding: the closed-form median and 84th percentile within 10 % of 500 records' ones."""
-    case = load_case(name)
-    closed = estimate(case)
-    records = simulate(case, records=500, seed=3).force_max
-    for probability in (0.5, 0.84):
-        assert closed.force_max_distribution.quantile(probability) == pytest.approx(np.quantile(records, probability), rel=0.10)
+@pytest.fixture(scope="module")
+def frequent_grid_errors():
+    """Closed-form fractile / 500 records' fractile - 1 on every frequent-pounding case of the accuracy grid."""
+    from pounding.validation import accuracy_cases
+
+    errors = {}
+    for case in accuracy_cases():
+        closed = estimate(case)
+        if closed.accuracy_regime != "frequent":
+            continue
+        records = simulate(case, records=500, seed=3).force_max
+        errors[case.name] = [closed.force_max_distribution.quantile(p) / np.quantile(records, p) - 1 for p in (0.5, 0.84)]
+    return errors
+
+
+def test_closed_form_fractiles_on_the_frequent_grid_cases(frequent_grid_errors):
+    """The median and the 84th percentile within 10 % of 500 records' on 14 of the 16 frequent-pounding cases and within
+    15 % on all: the two outside inherit the error of the mean (docs/accuracy.md, "The distribution of F_max")."""
+    errors = np.array(list(frequent_grid_errors.values()))
+    assert len(errors) == 16
+    assert np.all(np.abs(errors) <= 0.15), frequent_grid_errors
+    for column in (0, 1):
+        assert np.sum(np.abs(errors[:, column]) <= 0.10) >= 14, frequent_grid_errors
 
 
 def test_the_distribution_has_the_estimates_mean_and_no_impact_probability():
