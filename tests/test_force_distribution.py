@@ -79,3 +79,17 @@ def test_capacity_must_be_positive(capsys):
     with pytest.raises(SystemExit) as caught:
         main(["estimate", "section5-T2-0.4", "--capacity", "0"])
     assert caught.value.code == 2 and "--capacity" in capsys.readouterr().err
+
+
+def test_capacity_in_kgf_is_the_same_capacity_in_newtons(capsys):
+    """--units kgf-cm-s reads --capacity in kgf, converted once: 30,000 kgf is 294,199.5 N."""
+    import json
+
+    for arguments in (["--capacity", "30000", "--units", "kgf-cm-s"], ["--capacity", "294199.5"]):
+        assert main(["estimate", "section5-T2-0.4", "--json", *arguments]) == 0
+        out = json.loads(capsys.readouterr().out)
+        assert out["capacity"] == pytest.approx(294199.5)
+        probability = out["probability_exceeding"]
+    assert main(["estimate", "section5-T2-0.4", "--capacity", "30000", "--units", "kgf-cm-s"]) == 0
+    text = capsys.readouterr().out
+    assert "P(F_max > 30,000 kgf)" in text and f"{100 * probability:.1f} %" in text and " kN" not in text.split("recommended")[1].split("paper")[0]

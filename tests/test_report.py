@@ -116,3 +116,26 @@ def test_refilling_the_plots_sends_only_what_changed():
     assert figures.sources["psd_ground"].data is before["psd_ground"]
     assert figures.sources["psd_velocity"].data is not before["psd_velocity"]
     assert figures.sources["gap"].data is not before["gap"]
+
+
+def test_report_shows_the_distribution_of_f_max_closed_form_and_records(tmp_path):
+    """The fractiles table: the closed form's, and with a Monte Carlo study the records' with intervals; the CDF
+    figure carries both curves (the records' as steps over their sorted F_max)."""
+    import dataclasses
+
+    import numpy as np
+
+    from pounding import simulate
+    from pounding.report import MonteCarloPoint
+
+    case = load_case(DEFAULT_PRESET)
+    snapshot = compute_snapshot(case)
+    study = simulate(case, records=40, seed=2)
+    snapshot = dataclasses.replace(snapshot, monte_carlo=(MonteCarloPoint.from_result(study),))
+    text = write_report(tmp_path / "report.html", snapshot).read_text()
+    shown = display("SI")
+    distribution = snapshot.estimate.force_max_distribution
+    for probability in (0.5, 0.84, 0.95):
+        assert shown.force(distribution.quantile(probability)) in text
+    assert shown.force(float(np.quantile(study.force_max, 0.5))) in text
+    assert "Distribution of the extreme pounding force" in text and "Monte Carlo, 40 records" in text
