@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 from ..simulation import DesignGap, TimeHistory
+from ..units import STANDARD_GRAVITY
 from ..display_units import display
 from .snapshot import Snapshot
 
@@ -52,6 +53,9 @@ class Figures:
             "impact1": cds(drift=[], force=[]),
             "impact2": cds(drift=[], force=[]),
             "contact": cds(time=[], force=[]),
+            "relative": cds(time=[], relative=[]),
+            "gap_line": cds(time=[], gap=[]),
+            "ground": cds(time=[], acceleration=[]),
         }
         src = self.sources
 
@@ -101,11 +105,20 @@ class Figures:
             self.hysteresis.append(h)
         self.contact = figure(title="Pounding force during the record", height=230, **common)
         self.contact.line("time", "force", source=src["contact"], color="#d62728")
-        self.contact.xaxis.axis_label = "time [s]"
+        # The same record's relative displacement of the contact floors against the gap, and the ground motion.
+        self.relative = figure(title="Relative displacement of the contact floors, x1 - x2", height=200, x_range=self.contact.x_range, **common)
+        self.relative.line("time", "relative", source=src["relative"], color="#1f77b4", legend_label="x1 - x2")
+        self.relative.line("time", "gap", source=src["gap_line"], color="#d62728", line_dash="dashed", legend_label="gap")
+        self.relative.legend.location = "top_left"
+        self.ground = figure(title="Ground acceleration of the record", height=180, x_range=self.contact.x_range, **common)
+        self.ground.line("time", "acceleration", source=src["ground"], color="#7f7f7f")
+        self.ground.yaxis.axis_label = "ground acceleration [g]"
+        for plot in (self.contact, self.relative, self.ground):
+            plot.xaxis.axis_label = "time [s]"
 
     @property
     def all(self) -> list:
-        return [self.gap, self.psd_ground, self.psd_velocity, *self.hysteresis, self.contact]
+        return [self.gap, self.psd_ground, self.psd_velocity, *self.hysteresis, self.contact, self.relative, self.ground]
 
     def fill(self, snapshot: Snapshot | None, units: str = "SI", monte_carlo: tuple = (), design_gap: DesignGap | None = None) -> None:
         """Show ``snapshot`` (None: empty plots) in ``units``, with Monte Carlo
@@ -122,6 +135,7 @@ class Figures:
             h.xaxis.axis_label = f"storey drift [{d.length_unit}]"
             h.yaxis.axis_label = f"restoring force [{d.force_unit}]"
         self.contact.yaxis.axis_label = f"pounding force [{d.force_unit}]"
+        self.relative.yaxis.axis_label = f"x1 - x2 [{d.length_unit}]"
         if snapshot is None:
             for source in src.values():
                 _refill(source, **{key: [] for key in source.data})
@@ -168,9 +182,19 @@ class Figures:
             impact = history.contact_force[shown] > 0
             _refill(src[f"impact{b}"], drift=drift[impact], force=restoring[impact])
         if history is None:
-            _refill(src["contact"], time=[], force=[])
-        else:
-            _refill(src["contact"], time=history.time[shown], force=history.contact_force[shown] / fs)
+            for key in ("contact", "relative", "gap_line", "ground"):
+                _refill(src[key], **{column: [] for column in src[key].data})
+            return
+        time = history.time[shown]
+        _refill(src["contact"], time=time, force=history.contact_force[shown] / fs)
+        relative = history.displacement[shown, history.floor(1, snapshot.case.contact.levels[0])] \
+            - history.displacement[shown, history.floor(2, snapshot.case.contact.levels[1])]
+        _refill(src["relative"], time=time, relative=relative / ls)
+        _refill(src["gap_line"], time=[time[0], time[-1]], gap=[gap, gap])
+        _refill(src["ground"], time=time, acceleration=history.ground_acceleration[shown] / STANDARD_GRAVITY)
+        where = f"record {snapshot.record} of the study seeded {snapshot.seed}"
+        self.contact.title.text = f"Pounding force during {where}"
+        self.ground.title.text = f"Ground acceleration of {where}"
 
 
 def _refill(source, **columns) -> None:

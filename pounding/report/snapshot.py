@@ -110,15 +110,20 @@ def compute_snapshot(
     record: int = DEFAULT_RECORD,
     target_probability: float = defaults.TARGET_PROBABILITY,
     monte_carlo: tuple = (),
+    pair: LinearizedPair | None = None,
+    result: Estimate | None = None,
 ) -> Snapshot:
     """Run the library once for ``case``: the linearization is computed once and shared.
+
+    ``pair`` and ``result``: the case's linearized pair and its estimate at ``target_probability``, when
+    already made (the dashboard shows the estimate first); made here otherwise.
 
     Raises whatever the library raises for an impossible case (``CaseError``,
     ``ConvergenceError``); a failed record is kept in ``history_error``.
     """
-    pair = LinearizedPair.of(case)
+    pair = LinearizedPair.of(case) if pair is None else pair
     linearized = pair.buildings
-    result = estimate(pair, target_probability)
+    result = estimate(pair, target_probability) if result is None else result
     curve = result.gap_curve(gap_grid(case, result))
     omega = np.geomspace(0.3, case.excitation.cutoff_frequency, PSD_POINTS)
     psd_ground = np.asarray(case.excitation.spectrum.psd(omega), dtype=float)

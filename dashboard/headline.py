@@ -1,0 +1,105 @@
+"""The dashboard's headline: the answer first (the expected extreme force, its
+84th percentile, the probability of pounding, the gap needed), the Monte Carlo
+verdict once a study has run, the warnings in one or two sentences with their
+advice in the page's terms (dropped once followed), and the diagnostics folded
+away. Every number comes from the library's estimate; this only formats it."""
+
+from __future__ import annotations
+
+import html
+
+from pounding.display_units import display
+from pounding.monte_carlo_check import verdict_text
+
+__all__ = ["HEADLINE_CSS", "headline_html"]
+
+HEADLINE_CSS = """
+.headline { font-size: 14px; line-height: 1.35; }
+.headline .numbers { display: grid; grid-template-columns: repeat(2, minmax(150px, 1fr)); gap: 6px 14px; margin: 4px 0 8px; }
+.headline .number { border-left: 4px solid #0b4f8a; padding: 2px 8px; }
+.headline .number .value { font-size: 22px; font-weight: 700; color: #0b4f8a; display: block; }
+.headline .number .what { font-size: 12px; color: #444; }
+.headline p { margin: 4px 0; }
+.headline .verdict { font-weight: 600; }
+.headline .warning { color: #8a4b00; }
+.headline .accuracy { color: #555; font-size: 12px; }
+.headline details { font-size: 12px; color: #333; margin-top: 6px; }
+.headline details table { border-collapse: collapse; }
+.headline details td, .headline details th { padding: 1px 8px; text-align: left; border-bottom: 1px solid #eee; }
+.headline.stale { opacity: 0.5; }
+"""
+
+_ADVICE = (
+    ("Check it with `pounding simulate`.", "Check it with the Monte Carlo tab.", "monte_carlo"),
+    ("Use `pounding simulate --design-gap", "Use the Monte Carlo design gap (Monte Carlo tab).", "design_gap"),
+)
+
+
+def _in_page_terms(warning: str, done: set[str]) -> str | None:
+    """The warning with its advice as this page offers it; None when the advice has been followed and nothing else is said."""
+    for command, instead, study in _ADVICE:
+        if command in warning:
+            head = warning[: warning.index(command)].rstrip()
+            if study in done:
+                return head or None
+            return f"{head} {instead}".strip()
+    return warning
+
+
+def _number(value: str, what: str, css: str) -> str:
+    return f'<div class="number"><span class="value {css}">{value}</span><span class="what">{what}</span></div>'
+
+
+def headline_html(result, units: str = "SI", capacity: float | None = None, monte_carlo=None, design_gap=None,
+                  name: str = "") -> str:
+    """The headline of an :class:`~pounding.estimator.Estimate` ``result``; ``capacity`` [N] adds P(F_max > capacity);
+    ``monte_carlo`` a :class:`~pounding.report.MonteCarloPoint` of exactly this case, ``design_gap`` its Monte Carlo
+    design gap, each when run."""
+    shown = display(units)
+    case = result.case
+    distribution = result.force_max_distribution
+    numbers = [
+        _number(shown.force(result.force_expected), "expected extreme force E[F<sub>max</sub>]", "fe-recommended"),
+        _number(shown.force(distribution.quantile(0.84)), "84th percentile of F<sub>max</sub>", "f84"),
+        _number(f"{100 * result.pounding_probability:.3g} %", f"probability of pounding in {case.excitation.duration:.3g} s "
+                f"at a gap of {shown.length(case.contact.gap)}", "pounding-probability"),
+        _number(shown.length(result.required_gap), f"gap for {100 * result.target_probability:.4g} % no pounding", "required-gap"),
+    ]
+    if capacity is not None:
+        numbers.append(_number(f"{100 * result.probability_exceeding(capacity):.3g} %", f"P(F<sub>max</sub> &gt; {shown.force(capacity)})",
+                               "p-exceed"))
+    lines = []
+    done = set()
+    if monte_carlo is not None:
+        done.add("monte_carlo")
+        text = verdict_text(result.force_expected, monte_carlo.force_low, monte_carlo.force_high)
+        lines.append(f'<p class="verdict">Monte Carlo ({monte_carlo.records} records): <span class="mc-mean">'
+                     f'{shown.force(monte_carlo.force_max_mean)}</span>, 95 % interval {shown.force(monte_carlo.force_low)} to '
+                     f'{shown.force(monte_carlo.force_high)}; the estimate is <span class="mc-verdict">{html.escape(text)}</span>.</p>')
+    if design_gap is not None:
+        done.add("design_gap")
+        lines.append(f'<p class="verdict">Monte Carlo gap for {100 * design_gap.target_probability:.4g} % no pounding: '
+                     f'<span class="mc-design-gap">{shown.length(design_gap.gap)}</span> ({design_gap.n_records} records).</p>')
+    warnings = [w for w in (_in_page_terms(w, done) for w in result.warnings) if w]
+    lines += [f'<p class="warning">&#9888; {html.escape(w)}</p>' for w in warnings]
+    lines.append(f'<p class="accuracy">{html.escape(result.measured_accuracy)}</p>')
+    return (f'<div class="headline">{f"<b>{html.escape(name)}</b>" if name else ""}<div class="numbers">{"".join(numbers)}</div>'
+            + "".join(lines) + _details(result, shown) + "</div>")
+
+
+def _details(result, shown) -> str:
+    """The diagnostics, folded: the response, the count, the paper's estimate, the separation rules."""
+    paper = result.paper
+    rules = result.separation_rules
+    rows = [
+        ("sigma of the relative displacement X", shown.length(result.sigma_relative_displacement)),
+        ("sigma of the relative velocity V", shown.velocity(result.sigma_relative_velocity)),
+        ("expected number of impacts", f"{result.impacts_expected:.3g}"),
+        ("expected largest approach speed", shown.velocity(result.relative_velocity_expected)),
+        ("95th percentile of F<sub>max</sub>", shown.force(result.force_max_distribution.quantile(0.95))),
+        ("paper's estimate (Eq. 12-30)", shown.force(paper.force_expected)),
+        ("gap by SRSS / ABS / DDC", f"{shown.length(rules['srss'])} / {shown.length(rules['abs'])} / {shown.length(rules['ddc'])}"),
+        ("regime of the estimate", html.escape(result.accuracy_regime)),
+    ]
+    body = "".join(f"<tr><th>{label}</th><td>{value}</td></tr>" for label, value in rows)
+    return f"<details><summary>Details</summary><table>{body}</table></details>"

@@ -1,0 +1,286 @@
+"""The pounding dashboard as a Panel component: :class:`PoundingDashboard`.
+
+``PoundingDashboard()`` in a notebook cell shows it inline (after
+``pn.extension()``); ``pounding dashboard`` and ``panel serve dashboard/app.py``
+serve the same class in a template. Importing this module serves nothing and
+changes no global state of the caller.
+
+The view is thin: widgets made from the model's parameters (``model.py``), the
+headline (``headline.py``), and plots whose data the library computes.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import tempfile
+from pathlib import Path
+
+import panel as pn
+import param
+
+from pounding.report import Figures, write_report
+
+from dashboard.display_system import display_system
+from dashboard.headline import HEADLINE_CSS, headline_html
+from dashboard.model import PoundingModel
+from dashboard.runner import shared_pool
+from dashboard.tabs import LazyTabs
+from dashboard.visibility import visible
+
+__all__ = ["PoundingDashboard"]
+
+TITLE = "pounding: how hard will two adjacent buildings hit each other?"
+
+REDRAW_DELAY_MS = 150
+"""The plots are redrawn this long after a new result, so that the headline (the number the user waits for)
+reaches the browser and is painted before the larger plot data; changes in between give one redraw."""
+
+PAGE_CSS = """
+.change-note { font-size: 12px; color: #335; }
+"""
+BUTTON_CSS = ".bk-btn[disabled] { opacity: 0.4 !important; cursor: not-allowed !important; filter: grayscale(100%); }"
+"""Inside each button's shadow root: a disabled button greyed out, not a paler colour of an active one."""
+
+_FORMATS = {"G0": "0,0.[000]", "contact_stiffness": "0,0.[000]", "capacity": "0,0.[00]", "mass_1": "0,0.[000]", "mass_2": "0,0.[000]",
+            "stiffness_1": "0,0.[00]", "stiffness_2": "0,0.[00]", "target_probability": "0.[0000]", "pga": "0.[000]", "gap": "0,0.[000]"}
+
+
+def _session():
+    """The session's document when served (None in a notebook or a script)."""
+    doc = pn.state.curdoc
+    return doc if doc is not None and doc.session_context is not None else None
+
+
+def _unit(model: PoundingModel, name: str) -> str:
+    """The unit of a dimensional input in the unit system shown, '' for the others (their label says it)."""
+    from dashboard.inputs import dimensions
+
+    dims = dimensions(model).get(name)
+    return "" if dims is None else display_system(model.units).label(**dims)
+
+
+class PoundingDashboard(pn.viewable.Viewer):
+    """The dashboard on one case: inputs in engineering terms, the headline, the plots, Monte Carlo beside.
+
+    Parameters
+    ----------
+    model : PoundingModel, optional
+        The inputs and results (a new one on the default preset when not given).
+    """
+
+    model = param.ClassSelector(class_=PoundingModel, constant=True)
+
+    def __init__(self, **params):
+        doc = _session()
+        if "model" not in params:
+            schedule = (lambda fn: doc.add_next_tick_callback(fn)) if doc else None
+            batch = (lambda: pn.io.hold(doc)) if doc else None
+            submit = shared_pool().submit if doc else None
+            params["model"] = PoundingModel(schedule=schedule, batch=batch, submit=submit)
+        super().__init__(**params)
+        self._delay = (lambda fn: doc.add_timeout_callback(fn, REDRAW_DELAY_MS)) if doc else (lambda fn: fn())
+        self._batch = (lambda: pn.io.hold(doc)) if doc else contextlib.nullcontext
+        self._widgets: dict[str, pn.widgets.Widget] = {}
+        self._build()
+
+    # --- widgets -------------------------------------------------------------------
+
+    def _widget(self, name: str, **options) -> pn.widgets.Widget:
+        m = self.model
+        parameter = m.param[name]
+        if isinstance(parameter, param.Boolean):
+            kind = pn.widgets.Switch
+        elif isinstance(parameter, param.Selector):
+            kind = pn.widgets.Select  # labelled, unlike a group of toggles
+        elif isinstance(parameter, param.Integer):
+            kind = pn.widgets.IntInput
+        else:
+            kind = pn.widgets.FloatInput
+            options.setdefault("format", _FORMATS.get(name, "0.[0000]"))
+        if "description" in kind.param:
+            options.setdefault("description", parameter.doc)
+        widget = kind.from_param(parameter, sizing_mode="stretch_width", **options)
+        self._widgets[name] = widget
+        return widget
+
+    def _inputs(self, *names: str) -> list:
+        return [self._widget(name) for name in names]
+
+    def _building_card(self, b: int) -> pn.Card:
+        names = [f"storeys_{b}", f"period_{b}", f"mass_{b}", f"stiffness_{b}", f"damping_ratio_{b}", f"hysteresis_{b}",
+                 f"yield_drift_{b}", f"yield_force_{b}", f"post_yield_ratio_{b}", f"n_{b}", f"beta_share_{b}",
+                 f"alpha_{b}", f"A_{b}", f"beta_{b}", f"gamma_{b}"]
+        widgets = self._inputs(*names)
+        self._widgets[f"stiffness_{b}"].disabled = True
+        return pn.Card(*widgets, title=f"Building {b}", collapsed=True, sizing_mode="stretch_width")
+
+    def _build(self) -> None:
+        m = self.model
+        self.records_upload = pn.widgets.FileInput(accept=".AT2,.at2,.csv,.txt", multiple=True, sizing_mode="stretch_width",
+                                                   description="PEER .AT2 or two-column (time s, acceleration g) files")
+        self.records_upload.param.watch(self._on_records, "value")
+        self.case_upload = pn.widgets.FileInput(accept=".toml", sizing_mode="stretch_width", description="A case file (TOML)")
+        self.case_upload.param.watch(self._on_case_file, "value")
+        self.case_download = pn.widgets.FileDownload(callback=lambda: io.StringIO(m.toml()), filename="case.toml",
+                                                     label="Download the case (TOML)", button_type="light", sizing_mode="stretch_width")
+        uploaded = pn.pane.Markdown(pn.bind(lambda names: ("Uploaded: " + ", ".join(names)) if names else "No records uploaded yet.",
+                                            m.param.uploaded), sizing_mode="stretch_width", styles={"font-size": "12px"})
+        self.sidebar = pn.Column(
+            self._widget("preset"),
+            pn.Card(*self._inputs("gap", "target_probability", "capacity", "restitution"), title="Design", sizing_mode="stretch_width"),
+            pn.Card(*self._inputs("ground_motion", "intensity", "pga", "G0", "omega_g", "xi_g", "code", "ag", "ground_type",
+                                  "spectrum_type", "SDS", "SD1", "TL", "scaling", "scale", "records_pga"),
+                    pn.Column(pn.pane.Markdown("Records (.AT2):", margin=(0, 10)), self.records_upload, uploaded,
+                              visible=pn.bind(lambda form: form == "recorded motions", m.param.ground_motion), sizing_mode="stretch_width"),
+                    *self._inputs("duration", "envelope", "B1", "B2"),
+                    title="Ground motion", collapsed=True, sizing_mode="stretch_width"),
+            self._building_card(1),
+            self._building_card(2),
+            pn.Card(*self._inputs("level_1", "level_2", "contact_model", "contact_stiffness"), title="Contact", collapsed=True,
+                    sizing_mode="stretch_width"),
+            pn.Card(self._widget("units"), self._widget("advanced"), self.case_download,
+                    pn.pane.Markdown("Upload a case file:", margin=(0, 10)), self.case_upload,
+                    title="Units and case file", collapsed=True, sizing_mode="stretch_width"),
+            sizing_mode="stretch_width",
+        )
+        m.param.watch(self._refresh_inputs, list(m.param))
+        self._refresh_inputs()
+
+        self.error = pn.pane.Alert(pn.bind(lambda e: e or "ok", m.param.error), alert_type="danger",
+                                   visible=pn.bind(bool, m.param.error), sizing_mode="stretch_width", css_classes=["input-error"])
+        self.note = pn.pane.Markdown(m.param.note, css_classes=["change-note"], visible=pn.bind(bool, m.param.note), sizing_mode="stretch_width")
+        self.headline = pn.pane.HTML(
+            pn.bind(self._headline, m.param.result, m.param.units, m.param.capacity, m.param.mc_points, m.param.design_gap_result,
+                    m.param.error),
+            stylesheets=[HEADLINE_CSS], sizing_mode="stretch_width", min_width=380,
+        )
+        self.export = pn.widgets.FileDownload(callback=self._export, filename="pounding-report.html", label="Export report (HTML)",
+                                              button_type="success", disabled=pn.bind(lambda s: s is None, m.param.snapshot),
+                                              auto=True, embed=False, width=200, stylesheets=[BUTTON_CSS])
+
+        self.figures = Figures()
+        self.figures.fill(m.snapshot, m.units, tuple(m.mc_points), m.current_design_gap())
+        self._redraw_pending = False
+        m.param.watch(self._request_redraw, ["snapshot", "units", "mc_points", "design_gap_result"])
+        bokeh = lambda fig, **kw: pn.pane.Bokeh(fig, sizing_mode="stretch_width", **kw)  # noqa: E731
+        gap_figure = self.figures.gap
+        gap_figure.height = 340
+        legend = gap_figure.legend[0]
+        legend.label_text_font_size, legend.spacing, legend.padding = "10px", 0, 4
+        gap_figure.add_layout(legend, "below")  # under the plot: the plot keeps the width of the page's right half
+        legend.orientation, legend.ncols = "horizontal", 2
+        self.gap_plot = bokeh(gap_figure, min_height=340)
+
+        self.tabs = LazyTabs(self, [
+            ("Monte Carlo", self._monte_carlo_panel()),
+            ("Distribution of F_max", "distribution"),
+            ("Fragility", "fragility"),
+            ("Ground motion", "hazard"),
+            ("Spectra", pn.Row(bokeh(self.figures.psd_ground), bokeh(self.figures.psd_velocity), sizing_mode="stretch_width")),
+            ("Hysteresis loops", pn.Row(*(bokeh(h) for h in self.figures.hysteresis), sizing_mode="stretch_width")),
+            ("Force history", pn.Column(bokeh(self.figures.contact), bokeh(self.figures.relative), bokeh(self.figures.ground),
+                                        sizing_mode="stretch_width")),
+        ])
+        self.main = pn.Column(
+            self.error, self.note,
+            pn.Row(pn.Column(self.headline, self.export, width=430), self.gap_plot, sizing_mode="stretch_width"),
+            self.tabs.panel,
+            sizing_mode="stretch_width",
+        )
+
+    def _monte_carlo_panel(self) -> pn.Column:
+        m = self.model
+        running, design_running = m.param.mc_running, m.param.design_gap_running
+        button = lambda **options: pn.widgets.Button(stylesheets=[BUTTON_CSS], **options)  # noqa: E731
+        self.run = button(name="Run Monte Carlo", button_type="primary", disabled=pn.bind(lambda r, s: r or s is None, running, m.param.result))
+        self.cancel = button(name="Cancel", button_type="warning", disabled=pn.bind(lambda r: not r, running))
+        self.run.on_click(lambda _event: m.run_monte_carlo())
+        self.cancel.on_click(lambda _event: m.cancel_monte_carlo())
+        self.progress = pn.indicators.Progress(value=m.param.mc_progress, max=100, width=260, css_classes=["mc-progress"],
+                                               visible=running)
+        self.run_design_gap = button(name="Monte Carlo design gap", button_type="primary",
+                                     disabled=pn.bind(lambda r, s: r or s is None, design_running, m.param.result))
+        self.cancel_design_gap = button(name="Cancel design gap", button_type="warning", disabled=pn.bind(lambda r: not r, design_running))
+        self.run_design_gap.on_click(lambda _event: m.run_design_gap())
+        self.cancel_design_gap.on_click(lambda _event: m.cancel_design_gap())
+        self.design_gap_progress = pn.indicators.Progress(value=m.param.design_gap_progress, max=100, width=260,
+                                                          css_classes=["design-gap-progress"], visible=design_running)
+        records = pn.widgets.IntInput.from_param(m.param.records, width=140, description=m.param.records.doc)
+        seed = pn.widgets.IntInput.from_param(m.param.seed, width=120, description=m.param.seed.doc)
+        return pn.Column(
+            pn.pane.Markdown("Nonlinear time histories of the same buildings with pounding (the 'exact' method): the mean "
+                             "F_max with its 95 % interval beside the estimate, and the gap for the target from the records' free motion."),
+            pn.Row(records, seed),
+            pn.Row(self.run, self.cancel, self.progress),
+            pn.pane.Markdown(m.param.mc_status, css_classes=["mc-status"]),
+            pn.Row(self.run_design_gap, self.cancel_design_gap, self.design_gap_progress),
+            pn.pane.Markdown(m.param.design_gap_status, css_classes=["design-gap-status"]),
+            sizing_mode="stretch_width",
+        )
+
+    def _refresh_inputs(self, *_events) -> None:
+        """Show the inputs that apply, each labelled with its unit in the system shown."""
+        m = self.model
+        for name, widget in self._widgets.items():
+            if name in ("preset", "units", "advanced"):
+                continue
+            widget.visible = visible(m, name)
+            unit = _unit(m, name)
+            label = m.param[name].label
+            widget.name = f"{label} [{unit}]" if unit else label
+
+    # --- outputs -------------------------------------------------------------------
+
+    def _headline(self, result, units, capacity, _points, _design_gap, error) -> str:
+        m = self.model
+        if result is None:
+            text = "No result: the inputs are invalid (see the message above)." if error else "Computing..."
+            return f'<div class="headline stale"><p>{text}</p></div>'
+        capacity_si = display_system(units).to_si(capacity, force=1)
+        return headline_html(result, units, capacity_si, m.monte_carlo_for_current_gap(), m.current_design_gap(), m.case_name())
+
+    def _request_redraw(self, *_events) -> None:
+        if not self._redraw_pending:
+            self._redraw_pending = True
+            self._delay(self._redraw)
+
+    def _redraw(self) -> None:
+        self._redraw_pending = False
+        m = self.model
+        with self._batch():
+            self.figures.fill(m.snapshot, m.units, tuple(m.mc_points), m.current_design_gap())
+        self.tabs.refresh()
+
+    def _on_records(self, event) -> None:
+        if event.new:
+            names = self.records_upload.filename if isinstance(self.records_upload.filename, list) else [self.records_upload.filename]
+            values = event.new if isinstance(event.new, list) else [event.new]
+            self.model.upload_records(dict(zip(names, values)))
+
+    def _on_case_file(self, event) -> None:
+        if event.new:
+            self.model.load_toml(event.new, self.case_upload.filename or "case.toml")
+
+    def _export(self):
+        from dataclasses import replace
+
+        m = self.model
+        if m.snapshot is None:
+            return None
+        snapshot = replace(m.snapshot, monte_carlo=tuple(m.mc_points), design_gap=m.current_design_gap())
+        folder = Path(tempfile.mkdtemp(prefix="pounding-report-"))
+        name = f"pounding-report-{m.preset}{'-modified' if m.changes() else ''}.html"
+        self.export.filename = name
+        return str(write_report(folder / name, snapshot, m.units))
+
+    def template(self) -> pn.template.FastListTemplate:
+        """The served page: a template with the inputs in its sidebar."""
+        page = pn.template.FastListTemplate(title=TITLE, sidebar=[self.sidebar], main=[self.main], sidebar_width=340,
+                                            theme_toggle=False, font_url="", header_background="#0b4f8a")
+        page.config.raw_css.append(PAGE_CSS)
+        return page
+
+    def __panel__(self):
+        return pn.Row(pn.Column(self.sidebar, width=340), self.main, sizing_mode="stretch_width",
+                      stylesheets=[PAGE_CSS])

@@ -1,0 +1,304 @@
+"""The dashboard's model in process: its inputs in engineering terms give the library's numbers for the same case
+file, bad inputs are named, the newest request wins, and the studies run, cancel and go stale as they should."""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+import tomllib
+
+import numpy as np
+import pytest
+
+from pounding import estimate, load_case
+from pounding.accelerograms import Accelerogram, write_at2
+from pounding.case import case_from_dict
+from pounding.excitation import ground_accelerations
+from pounding.monte_carlo_check import verdict, verdict_text
+from pounding.presets import preset_names, preset_text
+from pounding.simulation import Cancelled, design_gap
+from pounding.units import STANDARD_GRAVITY
+
+from dashboard.case_form import chain_stiffness
+from dashboard.headline import headline_html
+from dashboard.model import PoundingModel
+from dashboard.runner import Latest
+
+DEFAULT = "section5-T2-0.4"
+
+
+def _force(model: PoundingModel) -> float:
+    assert model.error == "", model.error
+    return model.result.force_expected
+
+
+@pytest.mark.parametrize("name", preset_names())
+def test_every_preset_gives_the_librarys_estimate(name):
+    """The inputs in engineering terms (period, floor mass, yield drift, beta share) are the preset's case: the
+    same estimate to 1e-6 (the storey stiffness goes through the period and back)."""
+    model = PoundingModel(preset=name)
+    assert _force(model) == pytest.approx(estimate(load_case(name)).force_expected, rel=1e-6)
+    assert model.changes() == [] and model.case_name() == name
+
+
+def test_a_unit_switch_keeps_the_case_and_shows_mm_kn_t_or_the_papers_units():
+    model = PoundingModel()
+    before = _force(model)
+    assert model.gap == pytest.approx(10.0) and model.mass_1 == pytest.approx(39.240095758777665)  # mm, t
+    model.units = "kgf-cm-s"
+    assert model.gap == pytest.approx(1.0) and model.G0 == pytest.approx(65.03) and model.yield_drift_1 == pytest.approx(1.0)
+    assert _force(model) == pytest.approx(before, rel=1e-9)
+    model.units = "SI"
+    assert model.changes() == [] and _force(model) == pytest.approx(before, rel=1e-9)
+
+
+def test_more_storeys_keep_the_fundamental_period_and_say_so():
+    model = PoundingModel()
+    model.storeys_1 = 3
+    case = model.build_case()
+    assert case.buildings[0].n_storeys == 3 and case.buildings[0].periods[0] == pytest.approx(1.2, rel=1e-12)
+    assert "T1 = 1.2 s" in model.note and "kept" in model.note
+    model.level_1 = 3
+    model.storeys_1 = 2  # the contact floor no longer exists: it moves, and the page says so
+    assert model.level_1 == 2 and "contact floor moved to 2" in model.note
+
+
+def test_chain_stiffness_gives_the_period():
+    from pounding import Building, Storey
+
+    for storeys in (1, 2, 5):
+        k = chain_stiffness(3.0e4, 0.8, storeys)
+        assert Building(tuple(Storey(3.0e4, k) for _ in range(storeys))).periods[0] == pytest.approx(0.8, rel=1e-12)
+
+
+def test_yield_force_and_yield_drift_are_the_same_storey():
+    model = PoundingModel()
+    by_drift = _force(model)
+    model.yield_force_1 = model.stiffness_1 * model.yield_drift_1  # kN = kN/mm x mm
+    model.hysteresis_1 = "yield force"
+    assert _force(model) == pytest.approx(by_drift, rel=1e-9)
+    model.hysteresis_1 = "elastic"
+    assert model.build_case().buildings[0].storeys[0].bouc_wen.alpha == 1.0
+
+
+def test_the_excitation_by_its_pga_and_by_a_design_spectrum_are_the_librarys():
+    model = PoundingModel()
+    model.intensity, model.pga = "PGA", 0.25
+    data = tomllib.loads(preset_text(DEFAULT))
+    excitation = data["excitation"]
+    excitation.pop("G0")
+    excitation["pga"] = 0.25
+    assert _force(model) == pytest.approx(estimate(case_from_dict(data)).force_expected, rel=1e-6)
+    model.param.update(ground_motion="design spectrum", code="EN 1998-1", ag=0.3, ground_type="B", spectrum_type=1)
+    data["excitation"] = {"spectrum": "design", "code": "ec8", "ag": 0.3, "ground_type": "B", "spectrum_type": 1, "duration": 20.0}
+    assert _force(model) == pytest.approx(estimate(case_from_dict(data)).force_expected, rel=1e-6)
+
+
+def test_an_impossible_spectrum_is_named_and_no_number_is_left():
+    model = PoundingModel()
+    model.param.update(ground_motion="design spectrum", code="ASCE 7-16", SDS=0.2, SD1=3.0, TL=8.0)
+    assert model.result is None and model.snapshot is None
+    assert "excitation.TL" in model.error and "TS" in model.error
+
+
+def _records(folder, count=4, seed=3, damaged=False):
+    excitation = load_case(DEFAULT).excitation
+    files = {}
+    for index, record in enumerate(ground_accelerations(excitation, seed, range(count))):
+        path = write_at2(folder / f"m{index}.AT2", Accelerogram(f"m{index}", excitation.time_step, record))
+        files[path.name] = path.read_bytes()
+    if damaged:
+        files["m1.AT2"] = files["m1.AT2"].replace(b"NPTS", b"NPTX")
+    return files
+
+
+def test_uploaded_records_are_the_case_of_recorded_motions(tmp_path):
+    files = _records(tmp_path)
+    model = PoundingModel()
+    model.upload_records(files)
+    assert model.ground_motion == "recorded motions" and model.uploaded == sorted(files)
+    data = tomllib.loads(preset_text(DEFAULT))
+    data["excitation"] = {"records": ["*.AT2"]}
+    expected = case_from_dict(data, base_directory=tmp_path)
+    assert _force(model) == pytest.approx(estimate(expected).force_expected, rel=1e-9)
+    model.param.update(scaling="PGA", records_pga=0.2)
+    assert [r.peak for r in model.build_case().hazard.records] == pytest.approx([0.2 * STANDARD_GRAVITY] * 4)
+
+
+def test_a_malformed_record_is_named_and_no_number_is_left(tmp_path):
+    model = PoundingModel()
+    model.upload_records(_records(tmp_path, damaged=True))
+    assert model.result is None and "m1.AT2" in model.error and "Invalid input" in model.error
+
+
+def test_the_case_downloads_and_uploads_as_toml():
+    model = PoundingModel()
+    model.param.update(gap=25.0, period_2=0.55, restitution=0.7)
+    force = _force(model)
+    text = model.toml()
+    assert case_from_dict(tomllib.loads(text)).contact.gap == pytest.approx(0.025)
+    other = PoundingModel(preset="section6-T2-0.6")
+    other.load_toml(text.encode(), "mine.toml")
+    assert _force(other) == pytest.approx(force, rel=1e-9) and other.note == "Loaded mine.toml."
+    other.load_toml(b"units = 'SI'\n[contact\n", "broken.toml")
+    assert other.result is None and "broken.toml" in other.error
+
+
+def test_changes_from_the_preset_are_listed_and_name_the_case():
+    model = PoundingModel()
+    model.param.update(gap=20.0, period_2=0.5)
+    assert {(label, before, after, unit) for label, before, after, unit in model.changes()} == {
+        ("gap", 10.0, 20.0, "mm"), ("fundamental period T2 [s]", 0.4, 0.5, "")}
+    assert model.case_name() == f"{DEFAULT} (modified)"
+    model.param.update(gap=10.0, period_2=0.4)
+    assert model.changes() == [] and model.case_name() == DEFAULT
+
+
+def test_bad_combinations_are_named_by_the_case_files_key():
+    model = PoundingModel(preset="section5-T2-0.4-nonstationary")
+    model.B1 = 0.3  # above B2
+    assert model.result is None and "excitation.B2" in model.error
+    model.B1 = 0.085
+    model.level_2 = 3
+    assert "contact.levels" in model.error or model.level_2 == 1
+
+
+def test_the_newest_request_runs_and_a_stale_one_stops():
+    queued, delivered, ran = [], [], []
+    latest = Latest(submit=queued.append, deliver=lambda fn: fn())
+
+    def work(label):
+        def run(current, deliver):
+            ran.append(label)
+            if current():
+                deliver(lambda: delivered.append(label))
+        return run
+
+    for label in ("a", "b", "c"):
+        latest.request(work(label))
+    for job in queued:
+        job()
+    assert ran == ["c"] and delivered == ["c"]  # a and b were never started: cancelled, not queued
+    started = threading.Event()
+    proceed = threading.Event()
+
+    def slow(current, deliver):
+        started.set()
+        proceed.wait(5)
+        deliver(lambda: delivered.append("slow"))
+
+    thread_latest = Latest(submit=lambda fn: threading.Thread(target=fn).start())
+    thread_latest.request(slow)
+    started.wait(5)
+    thread_latest.request(lambda current, deliver: None)
+    proceed.set()
+    time.sleep(0.1)
+    assert delivered == ["c"]  # the slow request finished after a newer one: its result is dropped
+
+
+def test_verdict_against_the_monte_carlo_interval():
+    assert verdict(300.0, 280.0, 320.0) == ("within", 0.0)
+    where, ratio = verdict(259.6, 272.6, 339.7)
+    assert where == "below" and ratio == pytest.approx(259.6 / 272.6 - 1)
+    assert verdict_text(259.6, 272.6, 339.7) == "4.8 % below the Monte Carlo 95 % interval"
+    assert verdict(400.0, 272.6, 339.7)[0] == "above" and verdict(1.0, -math.inf, math.inf)[0] == "undefined"
+
+
+def test_headline_gives_the_answer_and_drops_advice_once_followed():
+    result = estimate(load_case("section5-T2-0.8"))
+    advice = [w for w in result.warnings if "--design-gap" in w]
+    assert advice, "the preset's gap for 95 % carries the design-gap advice"
+    page = headline_html(result, "SI")
+    assert "Use the Monte Carlo design gap" in page and "pounding simulate" not in page
+    from pounding.simulation import DesignGap
+
+    done = DesignGap(gap=0.2, upper_bound=0.25, target_probability=0.95, peaks=np.linspace(0.1, 0.3, 50), seed=4)
+    followed = headline_html(result, "SI", design_gap=done)
+    assert "Use the Monte Carlo design gap" not in followed and "200 mm" in followed
+    assert all(len(w) <= 200 for w in result.warnings)
+
+
+# --- the studies --------------------------------------------------------------------
+
+RECORDS = 20
+
+
+def _wait_until(done, timeout=60.0):
+    deadline = time.monotonic() + timeout
+    while not done() and time.monotonic() < deadline:
+        time.sleep(0.02)
+    assert done(), "timed out"
+
+
+def test_monte_carlo_runs_gives_a_verdict_and_a_change_makes_it_stale():
+    model = PoundingModel(records=10)
+    model.run_monte_carlo()
+    _wait_until(lambda: not model.mc_running)
+    point = model.monte_carlo_for_current_gap()
+    assert point is not None and point.records == 10 and point.force_low <= point.force_max_mean <= point.force_high
+    page = headline_html(model.result, "SI", monte_carlo=point)
+    assert verdict_text(model.result.force_expected, point.force_low, point.force_high) in page
+    model.restitution = 0.6  # another case: the study is no longer shown
+    assert model.monte_carlo_for_current_gap() is None and model.mc_points == []
+
+
+def test_a_failed_study_is_reported(monkeypatch):
+    import dashboard.studies as module
+    from pounding import SimulationError
+
+    def failing(*_args, **_kwargs):
+        raise SimulationError("record 3 (seed 1) failed at t = 2.0000 s: a floor displacement exceeded the runaway limit")
+
+    monkeypatch.setattr(module, "simulate", failing)
+    pending = []
+    model = PoundingModel(schedule=pending.append)
+    while pending:  # the first computation, delivered as a session's loop would
+        pending.pop(0)()
+    model.run_monte_carlo()
+    deadline = time.monotonic() + 30
+    while model.mc_running and time.monotonic() < deadline:
+        while pending:
+            pending.pop(0)()
+        time.sleep(0.02)
+    assert not model.mc_running and "record 3" in model.mc_status and model.monte_carlo_for_current_gap() is None
+
+
+def test_design_gap_is_the_librarys_holds_at_any_gap_and_goes_with_a_building(monkeypatch):
+    model = PoundingModel(records=RECORDS, seed=3)
+    model.run_design_gap()
+    _wait_until(lambda: not model.design_gap_running)
+    result = model.current_design_gap()
+    expected = design_gap(model.snapshot.case, 0.95, RECORDS, 3)
+    assert (result.gap, result.seed) == (expected.gap, 3)
+    model.gap = 2 * model.gap
+    model.units = "kgf-cm-s"
+    assert model.current_design_gap() is result
+    model.period_2 = 0.5
+    assert model.current_design_gap() is None and model.design_gap_status == "Monte Carlo design gap cleared: the inputs changed."
+
+
+def test_design_gap_cancel_stops_it(monkeypatch):
+    import dashboard.studies as module
+
+    calls = []
+
+    def gated(*args, **kwargs):
+        calls.append("started")
+        if len(calls) == 1:
+            kwargs["cancel"].wait(30)
+        try:
+            result = design_gap(*args, **kwargs)
+        except Cancelled:
+            calls[-1] = "cancelled"
+            raise
+        calls[-1] = "done"
+        return result
+
+    monkeypatch.setattr(module, "design_gap", gated)
+    model = PoundingModel(records=RECORDS)
+    model.run_design_gap()
+    assert model.design_gap_running
+    model.cancel_design_gap()
+    _wait_until(lambda: not model.design_gap_running)
+    assert calls == ["cancelled"] and model.design_gap_result is None and model.design_gap_status == "Monte Carlo design gap cancelled."
