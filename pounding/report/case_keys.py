@@ -36,7 +36,6 @@ DEFAULTS = {
     "shinozuka-sato": _field_defaults(ShinozukaSato, ("B1", "B2")),
     "clough-penzien": _field_defaults(CloughPenzien, ("omega_f", "xi_f")),
     "ec8": {"spectrum_type": 1},
-    "asce7-16": {"TL": 8.0},
     "building": {"damping_ratio": 0.05},
     "bouc_wen": {"alpha": 1.0, "A": 1.0, "beta": 0.0, "gamma": 0.0, "n": 1.0},
     "hysteresis": {"n": 1.0, "beta_share": 0.5},
