@@ -15,6 +15,7 @@ from ..display_units import Display, display
 from .distribution_section import distribution_figure, matching_records
 from .figures import Figures
 from .hazard_section import SPECTRUM_RECORDS, hazard_figure
+from .inputs_section import SPECTRUM_NAMES, code_parameters
 from .print_css import FIGURE_WIDTH
 from .snapshot import Snapshot
 from .summary import matching_study
@@ -60,7 +61,7 @@ def report_figures(snapshot: Snapshot, units: str = "SI") -> list[ReportFigure]:
     plots.fill(snapshot, units, snapshot.monte_carlo, snapshot.design_gap)
     shown = [ReportFigure("Distribution of the extreme pounding force F_max", _distribution_caption(snapshot, d),
                           (distribution_figure(snapshot, units),))]
-    hazard = hazard_figure(case, snapshot.seed)
+    hazard = hazard_figure(case, snapshot.seed, units)
     if hazard is not None:
         shown.append(ReportFigure("The ground motion's spectrum", _hazard_caption(snapshot), (hazard,)))
     shown.append(ReportFigure("Expected extreme force and probability of pounding against the gap", _gap_caption(snapshot, d), (plots.gap,)))
@@ -117,10 +118,11 @@ def _distribution_caption(snapshot: Snapshot, d: Display) -> str:
 def _hazard_caption(snapshot: Snapshot) -> str:
     hazard = snapshot.case.hazard
     if snapshot.case.recorded:
-        fitted = hazard.fitted.to_dict()
+        name = SPECTRUM_NAMES.get(type(hazard.fitted.spectrum).__name__, "")
         return (f"The mean periodogram of the {len(hazard.records)} recorded motions ({hazard.scaling}) and the "
-                f"{fitted['spectrum']} spectrum fitted to it, which the closed form takes; the Monte Carlo integrates the records themselves.")
-    return (f"The design spectrum ({hazard.target.describe()}), the random-vibration spectrum of the filter bank both methods use "
+                f"{name} spectrum fitted to it, which the closed form takes; the Monte Carlo integrates the records themselves.")
+    code = ", ".join(f"{name} {value} {unit}".strip() for name, value, unit in code_parameters(hazard))
+    return (f"The design spectrum ({code}; 5 % damping), the random-vibration spectrum of the filter bank both methods use "
             f"(dashed) and the mean 5 %-damped spectrum of {SPECTRUM_RECORDS} records drawn from it (seed {snapshot.seed}, dots); "
             f"expected PGA of the records {_pga_g(snapshot):.3g} g.")
 

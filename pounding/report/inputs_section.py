@@ -16,10 +16,11 @@ from ..filter_bank import FilterBank
 from ..hazard import DesignSpectrum
 from ..units import STANDARD_GRAVITY
 
-__all__ = ["input_rows", "inputs_html"]
+__all__ = ["SPECTRUM_NAMES", "code_parameters", "input_rows", "inputs_html"]
 
 _G = STANDARD_GRAVITY
-_SPECTRUM_NAMES = {"KanaiTajimi": "Kanai-Tajimi", "CloughPenzien": "Clough-Penzien"}
+SPECTRUM_NAMES = {"KanaiTajimi": "Kanai-Tajimi", "CloughPenzien": "Clough-Penzien"}
+"""Names of the random processes, by class name."""
 
 
 def _number(value: float) -> str:
@@ -87,13 +88,13 @@ def _excitation_rows(case: Case, units: str, terms: dict) -> list[tuple[str, str
                  ("records", f"{len(hazard.records)}: {', '.join(hazard.names[:6])}{', ...' if len(hazard.records) > 6 else ''}", ""),
                  ("scaling", hazard.scaling, ""),
                  ("records' mean PGA", _number(motion["records_pga_mean"] / _G), "g"),
-                 ("spectrum fitted for the closed form", f"{fitted.to_dict()['spectrum']}", ""),
-                 ("fitted duration", f"{fitted.duration:.4g} ({fitted.duration_definition})", "s")]
+                 ("spectrum fitted for the closed form", SPECTRUM_NAMES.get(type(fitted.spectrum).__name__, ""), ""),
+                 (f"duration of the fitted process ({fitted.duration_definition})", f"{fitted.duration:.4g}", "s")]
     elif isinstance(hazard, DesignSpectrum):
-        rows += [("form", "design spectrum", "")] + _code_rows(hazard)
+        rows += [("form", "design spectrum", "")] + code_parameters(hazard)
         rows.append(("compatible filter bank (both methods)", f"{len(spectrum.frequencies)} band-pass filtered white noises", ""))
     if not isinstance(spectrum, FilterBank):
-        name = _SPECTRUM_NAMES.get(type(spectrum).__name__, type(spectrum).__name__)
+        name = SPECTRUM_NAMES.get(type(spectrum).__name__, type(spectrum).__name__)
         if not case.recorded:
             rows.append(("form", f"{name} random process", ""))
         rows += [("G0 (intensity)", _number(u.from_si(spectrum.G0, length=2)), u.label(length=2, time=-3)),
@@ -111,7 +112,8 @@ def _excitation_rows(case: Case, units: str, terms: dict) -> list[tuple[str, str
     return rows
 
 
-def _code_rows(hazard: DesignSpectrum) -> list[tuple[str, str, str]]:
+def code_parameters(hazard: DesignSpectrum) -> list[tuple[str, str, str]]:
+    """The design spectrum's code and parameters as (parameter, value, unit) rows; accelerations in g."""
     target = hazard.target
     if isinstance(target, Eurocode8Spectrum):
         s, tb, tc, td = target.parameters
