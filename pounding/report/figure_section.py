@@ -145,15 +145,19 @@ def _gap_caption(snapshot: Snapshot, d: Display) -> str:
     return text
 
 
-def figures_html(figures: list[ReportFigure]) -> tuple[str, str]:
-    """The figures as HTML (numbered, captioned, with a list of figures) and the script that draws them.
+def figures_html(figures: list[ReportFigure]) -> tuple[str, str, str]:
+    """The figures as HTML (numbered, captioned, with a list of figures), the script that draws them and
+    the inline Bokeh library it needs (only the parts these plots use).
 
     Each figure is a ``<figure id="figure-N">`` whose caption is ``#figure-N-caption``; the list links to
     both, so a printed PDF keeps both as destinations (the tests read their pages from it)."""
     from bokeh.embed import components
+    from bokeh.embed.bundle import bundle_for_objs_and_resources
+    from bokeh.resources import INLINE
 
     models = [plot for figure in figures for plot in figure.plots]
     script, divs = components(models) if models else ("", ())
+    library = bundle_for_objs_and_resources(models, INLINE).scripts() if models else ""
     divs = iter(divs)
     listing, blocks = [], []
     for number, figure in enumerate(figures, start=1):
@@ -168,4 +172,4 @@ def figures_html(figures: list[ReportFigure]) -> tuple[str, str]:
             f'<figcaption id="{anchor}-caption"><a class="figure-label" href="#{anchor}-caption">Figure {number}.</a> '
             f"{html.escape(figure.caption)}</figcaption></figure>"
         )
-    return '<ol class="figure-list">' + "".join(listing) + "</ol>" + "".join(blocks), script
+    return '<ol class="figure-list">' + "".join(listing) + "</ol>" + "".join(blocks), script, library

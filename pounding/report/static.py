@@ -132,8 +132,6 @@ def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None,
                 provenance: ReportProvenance | None = None) -> str:
     """The report as one HTML document: every script and style inline; the summary, the tables and the
     figures' captions are static HTML, read without JavaScript; the plots are drawn by Bokeh."""
-    from bokeh.resources import INLINE
-
     case = snapshot.case
     provenance = provenance or case_provenance_from_name(case)
     title = report_title(case, provenance, title)
@@ -143,7 +141,7 @@ def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None,
         if snapshot.history is not None
         else f"The representative record failed: {html.escape(snapshot.history_error)}"
     )
-    figures, script = figures_html(report_figures(snapshot, units))
+    figures, script, library = figures_html(report_figures(snapshot, units))
     matching = [m for m in snapshot.monte_carlo if m.gap == case.contact.gap]
     body = (
         f"<header><h1>{html.escape(title)}</h1>{_made_html(provenance)}{_provenance_html(case, provenance)}"
@@ -159,7 +157,7 @@ def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None,
     page = (
         f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8"><title>{html.escape(title)}</title>'
         f'<meta name="generator" content="pounding {html.escape(__version__)}">'
-        f"<style>{REPORT_CSS}{RESULT_CSS}</style>{INLINE.render_css()}{INLINE.render_js()}</head>"
+        f"<style>{REPORT_CSS}{RESULT_CSS}</style>{library}</head>"
         f'<body><main class="report">{body}</main>{script}</body></html>\n'
     )
     return _without_server_scripts(page)
