@@ -349,7 +349,7 @@ def _report(args) -> int:
     monte_carlo = (MonteCarloPoint.from_result(run(simulate)),) if args.records else ()
     free = run(partial(design_gap, target_probability=args.design_gap)) if args.design_gap is not None else None
     snapshot = replace(snapshot, monte_carlo=monte_carlo, design_gap=free)
-    write_report(path, snapshot, units=args.units, field="--output")
+    write_report(path, snapshot, units=args.units, field="--output", provenance=_report_provenance(args))
     if args.json:
         figures = snapshot.estimate.to_dict()
         if monte_carlo:
@@ -360,6 +360,27 @@ def _report(args) -> int:
     else:
         print(f"wrote {path} ({path.stat().st_size / 1e6:.1f} MB)")
     return 0
+
+
+def _report_provenance(args):
+    """Where ``pounding report``'s case came from, and the command (every option written out) that made it.
+    A case file whose ``name`` is a preset's is reported as that preset, modified or not."""
+    import shlex
+
+    from .case import read_case_file
+    from .presets import preset_text
+    from .report import ReportProvenance, case_provenance
+
+    command = shlex.join(["pounding", "report", args.case, "-o", args.output, "--units", args.units]
+                         + (["--records", str(args.records), "--seed", str(args.seed)] if args.records else [])
+                         + (["--design-gap", f"{args.design_gap:g}"] if args.design_gap is not None else []))
+    if preset_text(args.case) is not None:
+        return ReportProvenance(args.case, args.case, (), command)
+    data = read_case_file(args.case)
+    name = data.get("name")
+    if isinstance(name, str) and preset_text(name) is not None:
+        return case_provenance(data, name, source=args.case, command=command, units=args.units)
+    return ReportProvenance(args.case, None, (), command)
 
 
 def _fragility(args) -> int:

@@ -156,9 +156,10 @@ def parser() -> argparse.ArgumentParser:
     report = commands.add_parser(
         "report",
         help="write a static, self-contained HTML report of a case",
-        description="One HTML file (all JS/CSS inline, opens offline, interactive plots): the inputs with units, "
-        "both estimators with their chain of equations, the gap-aware results, spectra, hysteresis loops, "
-        "force against gap and, with --records, the Monte Carlo comparison. Written atomically.",
+        description="One HTML file for a design note (all JS/CSS inline, opens offline, prints on A4): a summary "
+        "(E[F_max], its fractiles, the pounding probability, the gap needed and, with --records, the Monte Carlo "
+        "check), the inputs as a table (and what changed from the preset), numbered figures with captions, the "
+        "method and its measured accuracy; the version, date and this command. Written atomically.",
         epilog="examples:\n  pounding report section5-T2-0.4 -o report.html\n"
         "  pounding report case.toml -o case.html --records 300 --units kgf-cm-s\n"
         "  pounding report section5-T2-0.4 -o report.html --records 300 --design-gap 0.95",

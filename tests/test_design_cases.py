@@ -124,7 +124,7 @@ def test_the_report_shows_the_target_and_the_records_spectrum(tmp_path, ec8_case
     path = write_report(tmp_path / "design.html", ec8_case)
     text = path.read_text()
     assert "and the records drawn from it" in text and "mean of 20 records" in text
-    assert "Ground motion and storeys" in text and "yield drift [m]" in text
+    assert "storey 1: yield drift" in text and "EN 1998-1" in text  # the inputs table: storeys, and the code with its parameters
 
 
 def test_the_records_a_design_case_simulates_match_its_spectrum():

@@ -164,4 +164,4 @@ def test_the_report_shows_the_periodogram_and_the_fitted_spectrum(suite, tmp_pat
 
     folder, _ = suite
     text = write_report(tmp_path / "recorded.html", load_case(folder / "case.toml")).read_text()
-    assert "mean periodogram and the fitted" in text and "6 recorded motions" in text and "yield drift [m]" in text
+    assert "mean periodogram and the fitted" in text and "6 recorded motions" in text and "storey 1: yield drift" in text

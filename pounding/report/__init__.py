@@ -17,7 +17,11 @@ figures are built or a report is written.
 
 Modules (display units are :mod:`pounding.display_units`): :mod:`.snapshot` (the computed
 state), :mod:`.card` (the result card), :mod:`.figures` (the plots),
-:mod:`.static` (the static report).
+:mod:`.static` (the static report) and its parts: :mod:`.provenance` and
+:mod:`.case_keys` (where the inputs came from, what changed from a preset),
+:mod:`.summary`, :mod:`.inputs_section`, :mod:`.figure_section`,
+:mod:`.distribution_section`, :mod:`.hazard_section`, :mod:`.method_section`,
+:mod:`.print_css` (A4).
 """
 
 from .card import RESULT_CSS, result_html
@@ -33,9 +37,13 @@ from .snapshot import (
     compute_snapshot,
     gap_grid,
 )
-from .static import REPORT_NOTE, method_notes, report_html, write_report
+from .method_section import method_notes
+from .provenance import CaseChange, ReportProvenance, case_changes, case_provenance
+from .static import REPORT_NOTE, report_html, write_report
+from .summary import MonteCarloCheck, monte_carlo_check
 
 __all__ = [
+    "CaseChange",
     "DEFAULT_RECORD",
     "DEFAULT_SEED",
     "DISPLAY_UNITS",
@@ -47,11 +55,16 @@ __all__ = [
     "RESULT_CSS",
     "Display",
     "Figures",
+    "MonteCarloCheck",
     "MonteCarloPoint",
+    "ReportProvenance",
+    "case_changes",
+    "case_provenance",
     "Snapshot",
     "compute_snapshot",
     "display",
     "gap_grid",
+    "monte_carlo_check",
     "report_html",
     "result_html",
     "write_report",

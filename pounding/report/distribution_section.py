@@ -12,14 +12,15 @@ from .. import defaults
 from ..display_units import display
 from ..monte_carlo_result import quantile_interval
 from .snapshot import MonteCarloPoint, Snapshot
+from .summary import matching_study
 
-__all__ = ["distribution_figure", "quantiles_table"]
+__all__ = ["distribution_figure", "matching_records", "quantiles_table"]
 
 
-def _matching(snapshot: Snapshot) -> MonteCarloPoint | None:
-    """The last Monte Carlo study at the case's gap that kept its records' F_max."""
-    points = [m for m in snapshot.monte_carlo if m.gap == snapshot.case.contact.gap and m.force_max_values]
-    return points[-1] if points else None
+def matching_records(snapshot: Snapshot) -> MonteCarloPoint | None:
+    """The Monte Carlo study of the summary (:func:`~.summary.matching_study`), if it kept its records' F_max."""
+    study = matching_study(snapshot)
+    return study if study is not None and study.force_max_values else None
 
 
 def distribution_figure(snapshot: Snapshot, units: str = "SI"):
@@ -34,7 +35,7 @@ def distribution_figure(snapshot: Snapshot, units: str = "SI"):
     forces = np.concatenate([[0.0], distribution.forces])
     cdf = np.concatenate([[0.0], distribution.cdf])  # the atom at 0: no impact during the record
     plot.line(forces / shown.force_scale, cdf, line_width=2, color="#1f77b4", legend_label="closed form (G31)")
-    study = _matching(snapshot)
+    study = matching_records(snapshot)
     if study is not None:
         ordered = np.sort(np.asarray(study.force_max_values))
         steps = np.arange(1, ordered.size + 1) / ordered.size
@@ -48,7 +49,7 @@ def quantiles_table(snapshot: Snapshot, units: str = "SI") -> str:
     """The 50th, 84th and 95th percentiles of F_max, closed form and (when run) Monte Carlo with 95 % intervals."""
     shown = display(units)
     distribution = snapshot.estimate.force_max_distribution
-    study = _matching(snapshot)
+    study = matching_records(snapshot)
     header = "<tr><th>fractile</th><th>closed form</th>" + ("<th>Monte Carlo</th><th>95 % interval</th>" if study else "") + "</tr>"
     rows = [header]
     for key in defaults.FORCE_QUANTILES:

@@ -1,62 +1,40 @@
-"""The static report: :func:`write_report` writes a snapshot's result card and
-plots to one self-contained HTML file. Bokeh is imported when a report is made."""
+"""The static report: :func:`write_report` writes a snapshot to one
+self-contained HTML file for a design note: the title and where the inputs
+came from (a preset, modified or not: :mod:`.provenance`), a summary, the
+inputs as a table, the results, numbered figures with captions, the method;
+the tool's version, the date and the command that made it. Everything but the
+plots is static HTML (read without JavaScript); it prints on A4
+(:mod:`.print_css`). Bokeh is imported when a report is made."""
 
 from __future__ import annotations
 
+import dataclasses
 import html
+import math
 import os
 import re
 from datetime import datetime, timezone
 from pathlib import Path
 
-from ..case import Case
-from ..filter_bank import FilterBank
+import numpy as np
+
+from .. import __version__
+from ..case import Case, load_case
+from ..engineering import engineering_terms
 from ..output import check_target, write_atomic
-from ..regimes import accuracy_data
-from ..display_units import display
+from ..presets import preset_text
 from .card import RESULT_CSS, result_html
-from .distribution_section import distribution_figure, quantiles_table
-from .figures import Figures
-from .hazard_section import hazard_figure, storeys_table
+from .case_keys import key_label
+from .distribution_section import quantiles_table
+from .figure_section import figures_html, report_figures
+from .inputs_section import inputs_html
+from .method_section import method_notes
+from .print_css import REPORT_CSS
+from .provenance import ReportProvenance
 from .snapshot import Snapshot, compute_snapshot
+from .summary import summary_html
 
 # --- the static report ---------------------------------------------------------
-
-
-def method_notes() -> str:
-    """The method note, with the accuracy measured where pounding is frequent (pounding/data/accuracy.json)."""
-    frequent = accuracy_data()["force"]["kanai-tajimi"]["frequent"]
-    statement = (f"Within 10 % of Monte Carlo on {frequent['within_10_percent']} of {frequent['cases']} tested cases "
-                 "where pounding is frequent (gap below sigma_X / 2, broad-band motion, small residual).")
-    return _METHOD_NOTES.replace("{frequent}", statement)
-
-
-_METHOD_NOTES = """
-<h2>Method</h2>
-<ul class="method-notes">
-<li><b>Buildings.</b> Shear buildings with a Bouc-Wen law in every storey (Rahimi &amp; Soltani 2016, Eq. 1-2, 36-39);
-damping c = 2 xi sqrt(k m) for one storey, stiffness-proportional on the first mode for more.</li>
-<li><b>Ground motion.</b> Gaussian records of the case's spectrum (Kanai-Tajimi, Eq. 7; Clough-Penzien; or, for a design
-spectrum, a compatible bank of band-pass filtered white noises that both methods use), optionally modulated by the
-Shinozuka-Sato envelope (Eq. 8-9), by spectral representation; record i of a study is seeded on its own. Recorded
-motions are integrated as sampled, each once, and the closed form takes a spectrum fitted to them.</li>
-<li><b>Contact.</b> Jankowski's nonlinear viscoelastic law (Eq. 3-5) with the impact damping
-2 xi sqrt(beta sqrt(delta) m1 m2/(m1+m2)) (Eq. 4 as printed is dimensionally inconsistent).</li>
-<li><b>Monte Carlo ("exact").</b> Nonlinear time histories (Eq. 10-11) integrated with an error-controlled
-Dormand-Prince 5(4) scheme that locates every impact; halving its tolerance moves the mean F<sub>max</sub> by less than 0.1 %.</li>
-<li><b>Paper's estimate.</b> Statistical linearization (Eq. 19-21), variances with cross terms (Eq. 16-18, 25),
-Davenport's peak factor with the rate of Eq. 24 (Eq. 23), Michaelov's equivalent stationary process for modulated
-motion (Eq. 26-30), force by Eq. 13-14 with delta^1.5.</li>
-<li><b>Recommended estimate.</b> The same linearized pair, with its response to the part of the Bouc-Wen law
-that the linearization drops (an input independent of the ground motion) added; impacts counted as crossings of
-the gap (Rice) at the rate per unit time spent below the gap, with clumps (Vanmarcke), the response built up from
-rest; the largest approach counted on the motion that the impacts before it leave (their damping, as much as the
-pair remembers them); each impact's peak force is the contact law's own, K(e) times the undamped Hertz peak,
-lowered by the buildings' own forces that brake the approach at the gap. {frequent} Less accurate in
-the other regimes, and not reliable when pounding is rare (warnings say so).
-The derivation and the accuracy table by regime are in the project's docs (theory.md, accuracy.md).</li>
-</ul>
-"""
 
 REPORT_NOTE = (
     "A snapshot of one state: the plots are interactive (zoom, pan, hover) but nothing is recomputed; "
@@ -64,98 +42,125 @@ REPORT_NOTE = (
 )
 
 
-def _case_table(case: Case, units: str) -> str:
-    d = display(units)
-    u = d.system
-    rows = []
-    for number, building in enumerate(case.buildings, start=1):
-        storey = building.storeys[0]
-        bw = storey.bouc_wen
-        n = bw.n
-        rows.append(
-            f"<tr><th>building {number}</th><td>{building.n_storeys} storey(s), T<sub>1</sub> = {building.periods[0]:.4g} s, "
-            f"storey 1: m = {u.from_si(storey.mass, mass=1):.4g} {u.mass_label}, "
-            f"k = {u.from_si(storey.stiffness, force=1, length=-1):.4g} {u.force_label}/{u.length_label}, "
-            f"damping ratio {building.damping_ratio:g}; Bouc-Wen alpha = {bw.alpha:g}, A = {bw.A:g}, "
-            f"beta = {u.from_si(bw.beta, length=-n):.4g} 1/{u.length_label}^{n:g}, "
-            f"gamma = {u.from_si(bw.gamma, length=-n):.4g} 1/{u.length_label}^{n:g}, n = {n:g}</td></tr>"
-        )
-    c = case.contact
-    exponent = c.stiffness_exponent
-    rows.append(
-        f"<tr><th>contact</th><td>{c.model}, gap {d.length(c.gap)}, "
-        f"stiffness {u.from_si(c.stiffness, force=1, length=-exponent):.4g} {u.force_label}/{u.length_label}^{exponent:g}, "
-        f"restitution {c.restitution:g}, levels {c.levels[0]} and {c.levels[1]}</td></tr>"
+def _same_numbers(a, b) -> bool:
+    """Two cases' physics equal to 1e-9 (relative), whatever unit system they were written in."""
+    if dataclasses.is_dataclass(a) and dataclasses.is_dataclass(b):
+        if type(a) is not type(b):
+            return False
+        return all(_same_numbers(getattr(a, f.name), getattr(b, f.name)) for f in dataclasses.fields(a)
+                   if f.name not in ("name", "description", "units"))
+    if isinstance(a, (tuple, list)) and isinstance(b, (tuple, list)):
+        return len(a) == len(b) and all(_same_numbers(x, y) for x, y in zip(a, b))
+    if isinstance(a, float) and isinstance(b, float):
+        return math.isclose(a, b, rel_tol=1e-9)
+    try:
+        return bool(a == b)
+    except ValueError:  # arrays: compared element by element
+        return bool(np.array_equal(a, b))
+
+
+def case_provenance_from_name(case: Case) -> ReportProvenance:
+    """The provenance of a case given without one: a preset when its name is a preset's and its numbers are the
+    preset's; a preset modified in ways not listed when only its name is; else the case's name."""
+    if preset_text(case.name) is None:
+        return ReportProvenance(case.name)
+    if _same_numbers(case, load_case(case.name)):
+        return ReportProvenance(case.name, case.name)
+    return ReportProvenance(case.name, case.name, None)
+
+
+def report_title(case: Case, provenance: ReportProvenance, title: str | None = None) -> str:
+    """The report's title: ``title`` or one naming the case, with "modified from preset X" when it is."""
+    modified = f"modified from preset {provenance.preset}" if provenance.modified else ""
+    if title:
+        return f"{title} ({modified})" if modified and modified not in title else title
+    if modified:
+        named = "" if provenance.source == provenance.preset else f"{provenance.source}, "
+        return f"Pounding report: {named}{modified}"
+    return f"Pounding report: {provenance.source if provenance.preset else case.name}"
+
+
+def _provenance_html(case: Case, provenance: ReportProvenance) -> str:
+    if provenance.preset is None:
+        source = f"Inputs: the case {html.escape(provenance.source)}."
+    elif not provenance.modified:
+        source = f"Inputs: preset {html.escape(provenance.preset)}, with no modification."
+    elif provenance.changes is None:
+        source = (f"Inputs: preset {html.escape(provenance.preset)}, modified; the changes are not listed (the report "
+                  "was given the case, not its case file): the inputs table below is what was computed.")
+    else:
+        source = (f"Inputs: preset {html.escape(provenance.preset)}, modified in {len(provenance.changes)} key(s) "
+                  '(listed under "Changed from the preset").')
+    description = html.escape(case.description)
+    if provenance.modified and description:
+        description = f"The preset's description (before the changes): {description}"
+    return f'<p class="provenance">{source}</p>' + (f'<p class="description">{description}</p>' if description else "")
+
+
+def changes_html(provenance: ReportProvenance) -> str:
+    """The keys changed from the preset: case-file key, the preset's value, this report's, unit."""
+    if not provenance.changes or provenance.preset is None:
+        return ""
+    rows = "".join(
+        f"<tr><td>{html.escape(key_label(c.key))}<br><code>{html.escape(c.key)}</code></td>"
+        f'<td class="value">{html.escape(_value(c.before))}</td><td class="value">{html.escape(_value(c.after))}</td>'
+        f"<td>{html.escape(c.unit)}</td></tr>"
+        for c in provenance.changes
     )
-    rows.append(f"<tr><th>excitation</th><td>{_excitation_text(case, u)}</td></tr>")
-    return '<table class="case-table">' + "".join(rows) + "</table>"
+    return (f"<h3>Changed from the preset {html.escape(provenance.preset)}</h3>"
+            '<table class="changes"><thead><tr><th>parameter (case-file key)</th><th>preset</th><th>this report</th>'
+            f"<th>unit</th></tr></thead><tbody>{rows}</tbody></table>")
 
 
-def _excitation_text(case: Case, u) -> str:
-    """The excitation in one line, whatever its form."""
-    excitation, s = case.excitation, case.excitation.spectrum
-    envelope = "stationary" if excitation.stationary else f"Shinozuka-Sato envelope (B1 = {excitation.envelope.B1:g}, B2 = {excitation.envelope.B2:g})"
-    if isinstance(s, FilterBank):
-        target = html.escape(case.hazard.target.describe()) if case.hazard is not None else "a filter bank"
-        return (f"design spectrum {target}, as a compatible bank of {len(s.frequencies)} band-pass filtered white noises (the same PSD "
-                f"for both methods); duration {excitation.duration:g} s, {envelope}")
-    shape = f"{type(s).__name__}: G0 = {u.from_si(s.G0, length=2):.4g} {u.length_label}^2/s^3, omega_g = {s.omega_g:.4g} rad/s, xi_g = {s.xi_g:.4g}"
-    if case.recorded:
-        fitted = case.hazard.fitted
-        return (f"{len(case.hazard.records)} recorded motions ({html.escape(case.hazard.scaling)}): "
-                f"{html.escape(', '.join(case.hazard.names[:5]))}{', ...' if len(case.hazard.records) > 5 else ''}; "
-                f"the closed form takes a fitted {shape} over {fitted.duration:.3g} s ({html.escape(fitted.duration_definition)})")
-    return f"{shape}; duration {excitation.duration:g} s, {envelope}"
+def _value(value) -> str:
+    if value is None:
+        return "not given"
+    if isinstance(value, list):
+        return ", ".join(_value(v) for v in value)
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    return str(value)
 
 
-def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None) -> str:
-    """The report as one HTML document: every script and style inline."""
-    from bokeh.embed import file_html
-    from bokeh.layouts import column, row
-    from bokeh.models import Div
-    from bokeh.resources import INLINE
-
-    case = snapshot.case
-    title = title or f"pounding report: {case.name}"
-    matching = [m for m in snapshot.monte_carlo if m.gap == case.contact.gap]
+def _made_html(provenance: ReportProvenance) -> str:
     stamp = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    command = f" with <code>{html.escape(provenance.command)}</code>" if provenance.command else ""
+    return f'<p class="made">Written {stamp} by pounding {html.escape(__version__)}{command}.</p>'
+
+
+def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None,
+                provenance: ReportProvenance | None = None) -> str:
+    """The report as one HTML document: every script and style inline; the summary, the tables and the
+    figures' captions are static HTML, read without JavaScript; the plots are drawn by Bokeh."""
+    case = snapshot.case
+    provenance = provenance or case_provenance_from_name(case)
+    title = report_title(case, provenance, title)
+    terms = engineering_terms(case)
     history_note = (
-        f"Hysteresis: record {snapshot.record} of the study seeded {snapshot.seed}."
+        f"Hysteresis and pounding force: record {snapshot.record} of the study seeded {snapshot.seed}."
         if snapshot.history is not None
         else f"The representative record failed: {html.escape(snapshot.history_error)}"
     )
-    header = Div(
-        text=(
-            f"<style>{RESULT_CSS} .case-table th, .case-table td {{ text-align: left; padding: 2px 8px; font-size: 13px; }}</style>"
-            f"<h1>{html.escape(title)}</h1>"
-            f"<p>{html.escape(case.description)}</p>"
-            f'<p class="report-note"><i>{REPORT_NOTE}</i> Written {stamp} by pounding.</p>'
-            + _case_table(case, units)
-            + "<h2>Ground motion and storeys</h2>"
-            + storeys_table(case, units, snapshot.estimate.to_dict())
-            + "<h2>Result</h2>"
-            + result_html(snapshot, units, matching[-1] if matching else None, "not run for this report", snapshot.design_gap)
-            + f"<p>{history_note}</p>"
-            + "<h2>Distribution of the extreme force</h2>"
-            + quantiles_table(snapshot, units)
-        ),
-        sizing_mode="stretch_width",
+    figures, script, library = figures_html(report_figures(snapshot, units))
+    matching = [m for m in snapshot.monte_carlo if m.gap == case.contact.gap]
+    body = (
+        f"<header><h1>{html.escape(title)}</h1>{_made_html(provenance)}{_provenance_html(case, provenance)}"
+        f'<p class="report-note"><i>{REPORT_NOTE}</i></p></header>'
+        '<section class="summary"><h2>1. Summary</h2>' + summary_html(snapshot, units) + "</section>"
+        '<section class="inputs"><h2>2. Inputs</h2>' + changes_html(provenance) + inputs_html(case, units, terms) + "</section>"
+        '<section class="results"><h2>3. Results in detail</h2>'
+        + result_html(snapshot, units, matching[-1] if matching else None, "not run for this report", snapshot.design_gap)
+        + f"<p>{history_note}</p><h3>Distribution of the extreme force</h3>" + quantiles_table(snapshot, units) + "</section>"
+        '<section class="figures"><h2>4. Figures</h2>' + figures + "</section>"
+        '<section class="method">' + method_notes(snapshot.estimate.accuracy_regime) + "</section>"
     )
-    figures = Figures()
-    figures.fill(snapshot, units, snapshot.monte_carlo, snapshot.design_gap)
-    hazard = hazard_figure(case, snapshot.seed)
-    layout = column(
-        header,
-        distribution_figure(snapshot, units),
-        *([hazard] if hazard is not None else []),
-        figures.gap,
-        row(figures.psd_ground, figures.psd_velocity, sizing_mode="stretch_width"),
-        row(*figures.hysteresis, sizing_mode="stretch_width"),
-        figures.contact,
-        Div(text=method_notes(), sizing_mode="stretch_width"),
-        sizing_mode="stretch_width",
+    page = (
+        f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8"><title>{html.escape(title)}</title>'
+        f'<meta name="generator" content="pounding {html.escape(__version__)}">'
+        f"<style>{REPORT_CSS}{RESULT_CSS}</style>{library}</head>"
+        f'<body><main class="report">{body}</main>{script}</body></html>\n'
     )
-    return _without_server_scripts(file_html(layout, resources=INLINE, title=title))
+    return _without_server_scripts(page)
 
 
 _EXTERNAL = re.compile(
@@ -173,13 +178,31 @@ def _without_server_scripts(text: str) -> str:
 
 
 def write_report(path: str | os.PathLike, snapshot: Snapshot | Case, units: str = "SI", title: str | None = None,
-                 field: str = "path") -> Path:
+                 field: str = "path", provenance: ReportProvenance | None = None) -> Path:
     """Write the static report of ``snapshot`` (or of a case, computed here) to ``path``.
 
     The file is written atomically (:func:`pounding.output.write_atomic`): to a
     temporary file beside ``path``, then renamed over it, so a failed or
     interrupted write leaves no partial file; its mode is the usual one (0644
     under the default umask).
+
+    Parameters
+    ----------
+    path : str or PathLike
+        The HTML file to write.
+    snapshot : Snapshot or Case
+        What to report (:func:`~.snapshot.compute_snapshot`).
+    units : str
+        "SI" or "kgf-cm-s": the units every number is shown in.
+    title : str, optional
+        The report's title; by default one naming the case (and "modified from preset X" when it is).
+    field : str
+        The name of ``path`` in error messages (``--output`` on the command line).
+    provenance : ReportProvenance, optional
+        Where the case came from and the command that made the report
+        (:func:`~.provenance.case_provenance`). Without it, a case named after a
+        preset is that preset when its numbers are the preset's, and "modified from
+        preset X" (the changes not listed) when they are not.
 
     Returns
     -------
@@ -198,5 +221,5 @@ def write_report(path: str | os.PathLike, snapshot: Snapshot | Case, units: str 
     check_target(path, field, probe=True)
     if isinstance(snapshot, Case):
         snapshot = compute_snapshot(snapshot)
-    text = report_html(snapshot, units, title)
+    text = report_html(snapshot, units, title, provenance)
     return write_atomic(path, text, field)
