@@ -1,16 +1,17 @@
-"""Dashboard latency in a real browser: slider change -> new F_e on screen.
+"""Dashboard latency in a real browser: an input changed -> the new force on screen, and the plot redrawn.
 
-Serves ``dashboard/app.py`` with ``panel serve`` on a free port, opens it in
-headless Debian Chromium (/usr/bin/chromium) and, presses an arrow key on
-the T2 slider (alternately right and left, so T2 stays near 0.4 s) and
-waits (a MutationObserver on the result card) until the recommended F_e
-shown differs from the value before; the time runs from the page's clock
-just before the key press to two animation frames after the new text. Reports the median of 10
-in one session, each change from a settled page and back to back, then
-with 5 sessions changing sliders at once: 5 pages, each in its own browser
-context (its own renderer process, websocket and server session) of one
-Chromium on this same machine, so on 2 cores the 5 renderers compete with
-the server for the CPU.
+Serves ``dashboard/app.py`` with ``panel serve`` on a free port, opens it in headless Debian Chromium
+(/usr/bin/chromium), types T2 (alternately 0.45 and 0.40 s, Enter) and waits (a MutationObserver on the
+headline) until the expected extreme force shown differs from the value before; the time runs from the
+page's clock just before the key press to two animation frames after the new text. The plot's time runs to
+the frame where the force-against-gap curve's data changed. Reports one session (changes from a settled
+page), then 5 sessions changing T2 at once, 1 s apart: 5 pages, each in its own browser context (its own
+renderer, websocket and server session) of one Chromium on this machine, so on 2 cores the 5 renderers
+compete with the server for the CPU.
+
+Each way of serving is measured in turn (``--args --compute`` of dashboard/app.py and ``--num-procs``):
+the sessions' computations on the server's shared thread pool (the default), on the event loop (inline),
+and the thread pool in two server processes.
 
     python3 benchmarks/dashboard_latency.py
 """
@@ -38,9 +39,10 @@ def cpu_seconds(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
-def serve():
+def serve(compute: str = "threads", processes: int = 1):
     process = subprocess.Popen(
-        [sys.executable, "-m", "panel", "serve", str(ROOT / "dashboard" / "app.py"), "--port", "0"],
+        [sys.executable, "-m", "panel", "serve", str(ROOT / "dashboard" / "app.py"), "--port", "0", "--num-procs", str(processes),
+         "--args", "--compute", compute],
         cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
     )
     for line in process.stdout:
@@ -57,8 +59,10 @@ async def open_session(browser, url):
     await page.route("**/*", lambda r: r.continue_() if r.request.url.startswith(("http://localhost", "ws://localhost")) else r.abort())
     await page.goto(url)
     await page.locator(".fe-recommended").wait_for(timeout=60_000)
-    handle = page.locator(".bk-input-group", has=page.get_by_text("period T2", exact=False)).locator(".noUi-handle").first
-    return page, handle
+    await page.locator(".card-header", has_text="Building 2").first.click()
+    field = page.locator(".bk-input-group", has=page.get_by_text("fundamental period T2", exact=False)).locator("input").first
+    await field.wait_for(timeout=20_000)
+    return page, field
 
 
 WATCH_FE = """() => {
@@ -80,65 +84,80 @@ WATCH_FE = """() => {
         });
         observer.observe(root, {subtree: true, childList: true, characterData: true});
     });
+    // The plot: the force-against-gap source's data replaced (its 'paper' column marks it).
+    const source = window.Bokeh.documents.flatMap(d => Array.from(d.all_models)).find(
+        m => m.data != null && typeof m.data === 'object' && (m.data instanceof Map ? m.data.has('paper') : 'paper' in m.data));
+    const data = () => source.data instanceof Map ? source.data.get('force') : source.data.force;
+    const first = data();
+    window.__plotChanged = new Promise((resolve) => {
+        const poll = () => { if (data() !== first) requestAnimationFrame(() => resolve(performance.now())); else setTimeout(poll, 10); };
+        poll();
+    });
     return performance.now();
 }"""
 
 
-async def measure(page, handle, n: int, settle_ms: int = 0) -> list[float]:
-    """Latencies of ``n`` changes [ms]; ``settle_ms`` is a pause before each
-    change, so that the previous change's plots have been drawn (a user who
-    reads the number before moving the slider again)."""
+async def measure(page, field, n: int, settle_ms: int = 0, plots: list | None = None) -> list[float]:
+    """Latencies of ``n`` changes [ms] to the new force (and, into ``plots``, to the redrawn plot); ``settle_ms``
+    is a pause before each change, so that the previous change's plots have been drawn (a user who reads the
+    number before changing an input again)."""
     times = []
     for i in range(n):
         if settle_ms:
             await page.wait_for_timeout(settle_ms)
-        await handle.focus()
+        await field.fill("0.45" if i % 2 == 0 else "0.4")
         start_ms = await page.evaluate(WATCH_FE)
-        await page.keyboard.press("ArrowRight" if i % 2 == 0 else "ArrowLeft")
-        end_ms = await page.evaluate("() => window.__feChanged")
+        await field.press("Enter")
+        end_ms = await page.evaluate("() => Promise.race([window.__feChanged, new Promise(r => setTimeout(() => r(NaN), 30000))])")
         times.append(end_ms - start_ms)
+        plotted = await page.evaluate("() => Promise.race([window.__plotChanged, new Promise(r => setTimeout(() => r(NaN), 30000))])")
+        if plots is not None:
+            plots.append(plotted - start_ms)
     return times
 
 
 def summary(times: list[float]) -> str:
-    over = sum(t > 1000 for t in times)
+    missed = sum(t != t for t in times)  # NaN: nothing changed within 30 s
+    times = [t for t in times if t == t] or [float("nan")]
+    over = sum(t > 1000 for t in times) + missed
     return (f"median {statistics.median(times):.0f} ms, 90th percentile {statistics.quantiles(times, n=10)[-1]:.0f} ms, "
             f"max {max(times):.0f} ms, over 1 s: {over} of {len(times)}")
 
 
-async def run(process, url) -> None:
+async def run(process, url, label: str) -> None:
     async with async_playwright() as p:
         browser = await p.chromium.launch(executable_path=str(CHROMIUM), args=CHROMIUM_ARGS)
-        page, handle = await open_session(browser, url)
-        await measure(page, handle, 2)  # warm-up
+        page, field = await open_session(browser, url)
+        await measure(page, field, 2)  # warm-up
         await page.wait_for_timeout(1000)
         cpu_before = cpu_seconds(process.pid)
-        settled = await measure(page, handle, 10, settle_ms=1000)
+        plots: list[float] = []
+        settled = await measure(page, field, 10, settle_ms=1000, plots=plots)
         await page.wait_for_timeout(1000)
-        server_ms = (cpu_seconds(process.pid) - cpu_before) * 100  # [ms] per change, of 10
-        print(f"one session, each change from a settled page: slider -> new F_e on screen, {summary(settled)}; "
-              f"server CPU {server_ms:.0f} ms per change")
-        back_to_back = await measure(page, handle, 10)
-        print(f"one session, changes back to back (the previous plots still arriving): {summary(back_to_back)}")
+        server_ms = (cpu_seconds(process.pid) - cpu_before) * 100  # [ms] per change, of 10 (the first process only)
+        print(f"[{label}] one session: new force {summary(settled)}; plot {summary(plots)}; server CPU {server_ms:.0f} ms per change")
         await page.context.close()
 
         sessions = [await open_session(browser, url) for _ in range(5)]
-        for page, handle in sessions:
-            await measure(page, handle, 1)
-        every = [t for times in await asyncio.gather(*(measure(page, handle, 10, settle_ms=1000) for page, handle in sessions)) for t in times]
-        print(f"5 concurrent sessions (5 pages in one Chromium on the same machine), 10 changes each, 1 s apart: {summary(every)}")
+        for page, field in sessions:
+            await measure(page, field, 1)
+        plots = []
+        every = [t for times in await asyncio.gather(*(measure(page, field, 10, settle_ms=1000, plots=plots) for page, field in sessions))
+                 for t in times]
+        print(f"[{label}] 5 concurrent sessions, 10 changes each, 1 s apart: new force {summary(every)}; plot {summary(plots)}")
         await browser.close()
 
 
 def main() -> None:
     if not CHROMIUM.exists():
         sys.exit(f"needs {CHROMIUM} (apt-get install chromium)")
-    process, url = serve()
-    try:
-        asyncio.run(run(process, url))
-    finally:
-        process.terminate()
-        process.wait(timeout=10)
+    for compute, processes in (("threads", 1), ("inline", 1), ("threads", 2)):
+        process, url = serve(compute, processes)
+        try:
+            asyncio.run(run(process, url, f"{compute}, {processes} process(es)"))
+        finally:
+            process.terminate()
+            process.wait(timeout=10)
 
 
 if __name__ == "__main__":

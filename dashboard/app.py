@@ -26,7 +26,10 @@ threadpool_limits(limits=1, user_api="blas")
 # Panel's Fast design links its web font (Open Sans) from Google: the page must load with no network.
 pn.theme.Fast._resources = {**pn.theme.Fast._resources, "font": {}}
 
-dashboard = PoundingDashboard()
+# `panel serve dashboard/app.py --args --compute inline` computes on the session's event loop instead of the shared
+# thread pool: only benchmarks/dashboard_latency.py asks for it, to measure the choice.
+inline = sys.argv[1:3] == ["--compute", "inline"]
+dashboard = PoundingDashboard(compute_inline=inline)
 page = dashboard.template()
 page.model = dashboard.model  # for tests and benchmarks
 page.servable()

@@ -9,7 +9,7 @@ from __future__ import annotations
 import html
 
 from pounding.display_units import display
-from pounding.monte_carlo_check import verdict_text
+from pounding.report import monte_carlo_check
 
 __all__ = ["HEADLINE_CSS", "headline_html"]
 
@@ -72,7 +72,7 @@ def headline_html(result, units: str = "SI", capacity: float | None = None, mont
     done = set()
     if monte_carlo is not None:
         done.add("monte_carlo")
-        text = verdict_text(result.force_expected, monte_carlo.force_low, monte_carlo.force_high)
+        text = monte_carlo_check(result.force_expected, monte_carlo).text
         lines.append(f'<p class="verdict">Monte Carlo ({monte_carlo.records} records): <span class="mc-mean">'
                      f'{shown.force(monte_carlo.force_max_mean)}</span>, 95 % interval {shown.force(monte_carlo.force_low)} to '
                      f'{shown.force(monte_carlo.force_high)}; the estimate is <span class="mc-verdict">{html.escape(text)}</span>.</p>')

@@ -19,7 +19,7 @@ from pathlib import Path
 import panel as pn
 import param
 
-from pounding.report import Figures, write_report
+from pounding.report import Figures, case_provenance, write_report
 
 from dashboard.display_system import display_system
 from dashboard.headline import HEADLINE_CSS, headline_html
@@ -71,12 +71,12 @@ class PoundingDashboard(pn.viewable.Viewer):
 
     model = param.ClassSelector(class_=PoundingModel, constant=True)
 
-    def __init__(self, **params):
+    def __init__(self, compute_inline: bool = False, **params):
         doc = _session()
         if "model" not in params:
             schedule = (lambda fn: doc.add_next_tick_callback(fn)) if doc else None
             batch = (lambda: pn.io.hold(doc)) if doc else None
-            submit = shared_pool().submit if doc else None
+            submit = shared_pool().submit if doc and not compute_inline else None
             params["model"] = PoundingModel(schedule=schedule, batch=batch, submit=submit)
         super().__init__(**params)
         self._delay = (lambda fn: doc.add_timeout_callback(fn, REDRAW_DELAY_MS)) if doc else (lambda fn: fn())
@@ -272,7 +272,8 @@ class PoundingDashboard(pn.viewable.Viewer):
         folder = Path(tempfile.mkdtemp(prefix="pounding-report-"))
         name = f"pounding-report-{m.preset}{'-modified' if m.changes() else ''}.html"
         self.export.filename = name
-        return str(write_report(folder / name, snapshot, m.units))
+        provenance = case_provenance(m.case_data(), m.preset, command="pounding dashboard (Export report)", units=m.units)
+        return str(write_report(folder / name, snapshot, m.units, provenance=provenance))
 
     def template(self) -> pn.template.FastListTemplate:
         """The served page: a template with the inputs in its sidebar."""

@@ -103,7 +103,7 @@ def serve_dashboard(port: int = 5006, show: bool = False, extra_origins: list[st
         raise CaseError("port", problem)
     app = dashboard_app_path()
     if not app.is_file():
-        raise CaseError("dashboard", f"the dashboard script {app} is missing (install pounding from its source tree)")
+        raise CaseError("dashboard", f"the dashboard script {app} is missing; reinstall pounding (python3 -m pip install pounding)")
     port = port or _free_port()
     command = [sys.executable, "-m", "panel", "serve", str(app), "--port", str(port), "--num-procs", "1"]
     origins = [f"localhost:{port}", f"127.0.0.1:{port}", *(extra_origins or [])]

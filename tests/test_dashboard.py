@@ -14,7 +14,7 @@ from pounding.accelerograms import Accelerogram, write_at2
 from pounding.case import case_from_dict
 from pounding.display_units import display
 from pounding.excitation import ground_accelerations
-from pounding.monte_carlo_check import verdict_text
+from pounding.report import MonteCarloPoint, monte_carlo_check
 from pounding.presets import preset_text
 from tests.browser import CANVAS_COUNT_JS, LOAD_TIMEOUT, UPDATE_TIMEOUT
 
@@ -166,9 +166,8 @@ def test_monte_carlo_gives_its_verdict(dashboard):
     dashboard.get_by_role("button", name="Run Monte Carlo").click()
     dashboard.locator(".mc-verdict").wait_for(timeout=60_000)
     case = load_case(DEFAULT)
-    study = simulate(case, records=12, seed=1)
-    low, high = study.force_max_confidence_interval
-    _wait_text(dashboard, ".mc-verdict", verdict_text(estimate(case).force_expected, low, high))
+    study = MonteCarloPoint.from_result(simulate(case, records=12, seed=1))
+    _wait_text(dashboard, ".mc-verdict", monte_carlo_check(estimate(case).force_expected, study).text)
     assert dashboard.errors == []
 
 
@@ -198,5 +197,7 @@ def test_export_after_changes_downloads_a_report_that_says_so(dashboard, browser
     page.route("**/*", lambda r: r.continue_() if r.request.url.startswith("file:") else (log.append(r.request.url), r.abort()))
     page.goto(path.as_uri())
     page.wait_for_function(f"() => ({CANVAS_COUNT_JS})() >= 6", timeout=LOAD_TIMEOUT)
+    text = page.inner_text("body")
+    assert f"modified from preset {DEFAULT}" in text and "contact.gap" in text  # the title, and what changed
     assert log == []
     page.close()

@@ -15,7 +15,7 @@ from pounding import estimate, load_case
 from pounding.accelerograms import Accelerogram, write_at2
 from pounding.case import case_from_dict
 from pounding.excitation import ground_accelerations
-from pounding.monte_carlo_check import verdict, verdict_text
+from pounding.report import monte_carlo_check
 from pounding.presets import preset_names, preset_text
 from pounding.simulation import Cancelled, design_gap
 from pounding.units import STANDARD_GRAVITY
@@ -197,14 +197,6 @@ def test_the_newest_request_runs_and_a_stale_one_stops():
     assert delivered == ["c"]  # the slow request finished after a newer one: its result is dropped
 
 
-def test_verdict_against_the_monte_carlo_interval():
-    assert verdict(300.0, 280.0, 320.0) == ("within", 0.0)
-    where, ratio = verdict(259.6, 272.6, 339.7)
-    assert where == "below" and ratio == pytest.approx(259.6 / 272.6 - 1)
-    assert verdict_text(259.6, 272.6, 339.7) == "4.8 % below the Monte Carlo 95 % interval"
-    assert verdict(400.0, 272.6, 339.7)[0] == "above" and verdict(1.0, -math.inf, math.inf)[0] == "undefined"
-
-
 def test_headline_gives_the_answer_and_drops_advice_once_followed():
     result = estimate(load_case("section5-T2-0.8"))
     advice = [w for w in result.warnings if "--design-gap" in w]
@@ -238,7 +230,7 @@ def test_monte_carlo_runs_gives_a_verdict_and_a_change_makes_it_stale():
     point = model.monte_carlo_for_current_gap()
     assert point is not None and point.records == 10 and point.force_low <= point.force_max_mean <= point.force_high
     page = headline_html(model.result, "SI", monte_carlo=point)
-    assert verdict_text(model.result.force_expected, point.force_low, point.force_high) in page
+    assert monte_carlo_check(model.result.force_expected, point).text in page
     model.restitution = 0.6  # another case: the study is no longer shown
     assert model.monte_carlo_for_current_gap() is None and model.mc_points == []
 
