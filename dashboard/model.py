@@ -72,7 +72,8 @@ class PoundingModel(Studies):
         super().__init__(**params)
         self._schedule = schedule or (lambda fn: fn())
         self._batch = batch or contextlib.nullcontext
-        self._latest = Latest(submit, self._schedule)
+        self._compute_off_loop = submit or (lambda fn: fn())
+        self._latest = Latest(self._compute_off_loop, self._schedule)
         self._syncing = False
         self._extra: dict = {}
         self._description = ""
@@ -227,6 +228,13 @@ class PoundingModel(Studies):
         self.note = (f"The storey stiffness follows the number of storeys: T1 = {self.period_1:.3g} s and T2 = {self.period_2:.3g} s are kept."
                      if not self.note.startswith("Building") else self.note)
 
+    @param.depends("contact_model", watch=True)
+    def _on_contact_model(self):
+        """Another law reads the contact stiffness in other units (force/length^1.5 or force/length): say so."""
+        if not self._syncing:
+            unit = display_system(self.units).label(**dimensions(self)["contact_stiffness"])
+            self.note = f"The contact stiffness is now read in {unit} ({self.contact_model} law): check its value."
+
     # --- outputs -------------------------------------------------------------------
 
     def recompute(self) -> None:
@@ -249,6 +257,7 @@ class PoundingModel(Studies):
         self._set_quietly(derived)
 
     def _compute(self, data: dict, current, deliver) -> None:
+        """The estimate, delivered; then, once the headline is out, what the plots show (from the same pair)."""
         try:
             case = self.build_case(data)
             pair = LinearizedPair.of(case)
@@ -257,16 +266,23 @@ class PoundingModel(Studies):
             text = message(error)
             deliver(lambda: self._failed(text))
             return
-        deliver(lambda: self._estimated(case, result))
-        if not current():
-            return
-        try:
-            snapshot = compute_snapshot(case, seed=self.seed, target_probability=self.target_probability, pair=pair, result=result)
-        except _FAILURES as error:
-            text = message(error)
-            deliver(lambda: self._failed(text))
-            return
-        deliver(lambda: self._snapshot_ready(snapshot))
+
+        def plots() -> None:
+            if not current():
+                return
+            try:
+                snapshot = compute_snapshot(case, seed=self.seed, target_probability=self.target_probability, pair=pair, result=result)
+            except _FAILURES as error:
+                text = message(error)
+                deliver(lambda: self._failed(text))
+                return
+            deliver(lambda: self._snapshot_ready(snapshot))
+
+        def headline() -> None:
+            self._estimated(case, result)
+            self._compute_off_loop(plots)  # after the headline has gone out: the plots' work does not delay it
+
+        deliver(headline)
 
     def _failed(self, text: str) -> None:
         with self._batch():

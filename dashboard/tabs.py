@@ -72,7 +72,7 @@ class LazyTabs:
     def __init__(self, dashboard, entries):
         self.dashboard = dashboard
         model = dashboard.model
-        self._latest = Latest(getattr(model._latest, "_submit", None), getattr(model._latest, "_deliver", None))
+        self._latest = Latest(model._compute_off_loop, model._schedule)
         self._lazy: dict[int, tuple[str, pn.Column]] = {}
         self._shown: dict[int, tuple] = {}
         tabs = []

@@ -23,6 +23,7 @@ from pounding.report import Figures, case_provenance, write_report
 
 from dashboard.display_system import display_system
 from dashboard.headline import HEADLINE_CSS, headline_html
+from dashboard.inputs import dimensions
 from dashboard.model import PoundingModel
 from dashboard.runner import shared_pool
 from dashboard.tabs import LazyTabs
@@ -52,12 +53,9 @@ def _session():
     return doc if doc is not None and doc.session_context is not None else None
 
 
-def _unit(model: PoundingModel, name: str) -> str:
-    """The unit of a dimensional input in the unit system shown, '' for the others (their label says it)."""
-    from dashboard.inputs import dimensions
-
-    dims = dimensions(model).get(name)
-    return "" if dims is None else display_system(model.units).label(**dims)
+SHAPING = ("units", "advanced", "contact_model", "ground_motion", "intensity", "code", "scaling", "envelope",
+           "storeys_1", "storeys_2", "hysteresis_1", "hysteresis_2", "n_1", "n_2")
+"""The inputs that decide which others apply or what unit they take: the only ones whose change relabels the page."""
 
 
 class PoundingDashboard(pn.viewable.Viewer):
@@ -144,7 +142,7 @@ class PoundingDashboard(pn.viewable.Viewer):
                     title="Units and case file", collapsed=True, sizing_mode="stretch_width"),
             sizing_mode="stretch_width",
         )
-        m.param.watch(self._refresh_inputs, list(m.param))
+        m.param.watch(self._refresh_inputs, [name for name in SHAPING if name in m.param])
         self._refresh_inputs()
 
         self.error = pn.pane.Alert(pn.bind(lambda e: e or "ok", m.param.error), alert_type="danger",
@@ -222,13 +220,13 @@ class PoundingDashboard(pn.viewable.Viewer):
     def _refresh_inputs(self, *_events) -> None:
         """Show the inputs that apply, each labelled with its unit in the system shown."""
         m = self.model
+        dims, shown = dimensions(m), display_system(m.units)
         for name, widget in self._widgets.items():
             if name in ("preset", "units", "advanced"):
                 continue
             widget.visible = visible(m, name)
-            unit = _unit(m, name)
             label = m.param[name].label
-            widget.name = f"{label} [{unit}]" if unit else label
+            widget.name = f"{label} [{shown.label(**dims[name])}]" if name in dims else label
 
     # --- outputs -------------------------------------------------------------------
 

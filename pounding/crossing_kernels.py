@@ -40,13 +40,13 @@ DASHPOT_TOLERANCE = 1e-7
 """Tolerance on the mismatch of sigma_V^2 / sigma_V,free^2 of the impacts' dashpot [-]."""
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def vanmarcke_bandwidth(lambda_0, lambda_1, lambda_2):
     """Vanmarcke's q = sqrt(1 - lambda_1^2 / (lambda_0 lambda_2)) from one-sided spectral moments [-]."""
     return math.sqrt(max(1.0 - lambda_1 * lambda_1 / (lambda_0 * lambda_2), 0.0))
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def vanmarcke_clumps(clumping: float, r: float, tail: float) -> float:
     """Vanmarcke's clump factor min(1, (1 - exp(-clumping r)) / tail), with
     tail = 1 - exp(-r^2 / 2) > 0 (the caller has it at hand, or r is 0: 1)."""
@@ -55,7 +55,7 @@ def vanmarcke_clumps(clumping: float, r: float, tail: float) -> float:
     return min(1.0, -math.expm1(-clumping * r) / tail)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def merged_instants(first, second, weights, tolerance=1e-6):
     """Consecutive instants of a time grid at which both series agree to
     ``tolerance`` (relative) taken as one, their ``weights`` summed: a
@@ -72,7 +72,7 @@ def merged_instants(first, second, weights, tolerance=1e-6):
     return first[: keep + 1], second[: keep + 1], weights[: keep + 1]
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def clumped_crossings(levels, sigma, rate, clumping):
     """N(u) of :func:`expected_absolute_peak` at each level u (``rate``: w_t 2 nu_t)."""
     count = np.zeros(levels.size)
@@ -87,7 +87,7 @@ def clumped_crossings(levels, sigma, rate, clumping):
     return count
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def time_cut_rate(gap, sigma_x, sigma_v):
     """Rice's rate of upcrossings of the gap per unit of time spent below it,
     (sigma_V / (2 pi sigma_X)) exp(-u^2 / 2) / Phi(u), u = gap / sigma_X [1/s];
@@ -100,7 +100,7 @@ def time_cut_rate(gap, sigma_x, sigma_v):
     return sigma_v / (2.0 * math.pi * sigma_x) * math.exp(-0.5 * u * u) / below
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def approach_intensity(gaps, velocities, sigma_x, sigma_v, weights, clumping, scale_x, scale_v):
     """Lambda(gap, v) = sum_t w_t nu_t / Phi(u_t) exp(-(u_t^2 + rho_t^2) / 2) c(r_t),
     nu_t = sigma_V(t) / (2 pi sigma_X(t)), u_t = gap / sigma_X(t), rho_t = v / sigma_V(t),
@@ -133,7 +133,7 @@ def approach_intensity(gaps, velocities, sigma_x, sigma_v, weights, clumping, sc
     return out
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def required_gap(allowed, sigma_x, sigma_v, weights):
     """Bisection for Lambda(gap, 0) = allowed, Lambda(gap, 0) = sum_t w_t nu_t(gap)
     the time-cut rate summed over the history: it falls with the gap (as
@@ -153,7 +153,7 @@ def required_gap(allowed, sigma_x, sigma_v, weights):
     return high
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def free_approaches(gap, sigma_x, sigma_v, weights):
     """Lambda(gap, 0) with every crossing counted: what the intensity kernel
     gives at v = 0 without clumps (its factor c(r) is then 1)."""
@@ -163,7 +163,7 @@ def free_approaches(gap, sigma_x, sigma_v, weights):
     return total
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def jump_memory(rate, frequency, rates, x_modes, v_modes):
     """rho-bar: E[(omega x_J)^2 + v_J^2] at the next impact, the intervals between
     impacts exponential with ``rate`` (E[exp(s Delta)] = rate / (rate - s)), capped at 1."""
@@ -175,7 +175,7 @@ def jump_memory(rate, frequency, rates, x_modes, v_modes):
     return min(1.0, max(0.0, total))
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def spectral_sums(c, weights, psd, psd_omega, psd_omega2, feedback_re, feedback_im):
     """int G_X w^k / |1 + c G|^2 for k = 0, 1, 2 (trapezoid weights)."""
     s0 = 0.0
@@ -191,7 +191,7 @@ def spectral_sums(c, weights, psd, psd_omega, psd_omega2, feedback_re, feedback_
     return s0, s1, s2
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def with_dashpot(c, spectra):
     """sigma_X and sigma_V ratios to the free motion's and the bandwidth of X under a dashpot c."""
     weights, psd, psd_omega, psd_omega2, feedback_re, feedback_im, free0, free2 = spectra
@@ -199,7 +199,7 @@ def with_dashpot(c, spectra):
     return math.sqrt(s0 / free0), math.sqrt(s2 / free2), vanmarcke_bandwidth(s0, s1, s2)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def dashpot_mismatch(c, gap, sigma_x, sigma_v, frequency, restitution, spectra, modes):
     """g(c) = sigma_V(c)^2 / sigma_V(0)^2 - R(c): the damped motion's velocity
     variance against the energy its impacts leave it, R = (1 - rho) / (1 - rho e^2);
@@ -212,7 +212,7 @@ def dashpot_mismatch(c, gap, sigma_x, sigma_v, frequency, restitution, spectra, 
     return ratio_v * ratio_v - left, ratio_x, ratio_v, bandwidth, rho, rate
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def solve_dashpots(gaps, sigma_x, sigma_v, frequency, restitution, dissipation, spectra, modes, feedback_max):
     """c with g(c) = 0 for each gap (:func:`_mismatch`), by a safeguarded secant
     (Illinois) in units of the energy balance's m (1 - e^2) nu, bracketed from

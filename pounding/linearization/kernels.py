@@ -18,7 +18,7 @@ from numba import njit
 __all__ = ["dense_solve", "iteration_moments", "lyapunov_upper", "mixing_step", "second_moments"]
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def dense_solve(matrix, rhs):
     """Solve matrix x = rhs by Gaussian elimination with partial pivoting
     (small dense systems; numba's LAPACK binding costs seconds to compile).
@@ -50,7 +50,7 @@ def dense_solve(matrix, rhs):
     return x
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def lyapunov_upper(matrix, rhs, rows, cols):
     """Upper triangle p of the symmetric P with A P + P A^T = -Q, from the
     dense m x m system (m = n (n + 1) / 2) on ``rhs`` = upper triangle of Q
@@ -70,7 +70,7 @@ def lyapunov_upper(matrix, rhs, rows, cols):
     return dense_solve(operator, rhs)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def second_moments(matrix, rhs, rows, cols, left, right):
     """left_i^T P right_i for the stationary covariance P of ``matrix`` under
     the noise whose negated upper triangle is ``rhs``."""
@@ -89,7 +89,7 @@ def second_moments(matrix, rhs, rows, cols, left, right):
     return out
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def iteration_moments(matrix, z_states, velocity_start, drift_rows, c_e, k_e, rhs, rows, cols, left, right):
     """Put (c_e, k_e) of the yielding storeys into the state matrix (in place)
     and return their second moments, see :class:`_StoreyMoments`."""
@@ -101,7 +101,7 @@ def iteration_moments(matrix, z_states, velocity_start, drift_rows, c_e, k_e, rh
     return second_moments(matrix, rhs, rows, cols, left, right)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def mixing_step(x, residual, history_x, history_f, filled, relaxation, count):
     """Under-relaxed fixed-point step with Anderson mixing (Walker & Ni 2011).
 
