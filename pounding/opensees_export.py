@@ -45,8 +45,8 @@ __all__ = [
 ]
 
 STEPS_PER_IMPACT = 500
-"""Analysis steps over the shortest impact of the records, at least: there halving the step moved F_max by
-0.03 % at most (docs/opensees.md); at 250 a step, by up to 0.11 %."""
+"""Analysis steps over the shortest impact of the records, at least: from there on halving the step moved F_max
+by 0.07 % at most (docs/opensees.md); at 330, by up to 0.11 %."""
 PERIOD_STEPS = 1000
 """Analysis steps over the buildings' shortest natural period, at least (Newmark's period error (omega h)^2 / 12
 is then 3e-6): the bound when no record pounds."""
@@ -55,8 +55,7 @@ HERTZ_DURATION_FACTOR = 2.9432
 _IMPORTS_MARKER = "# --- model.py: imports"
 _CODE_MARKER = "# --- model.py: the OpenSeesPy model"
 _LACKING = {
-    "linear": "OpenSees' ViscoelasticGap pulls the floors together at the end of an impact, which pounding's linear law "
-              "does not (F >= 0): F_max differed by up to 4 % (docs/opensees.md); use jankowski, hertzdamp or hertz",
+    "linear": "its ViscoelasticGap pulls at an impact's end, pounding's law never does (docs/opensees.md)",
 }
 
 
@@ -64,8 +63,8 @@ def check_exportable(case: Case) -> None:
     """:class:`CaseError` naming ``contact.model`` when OpenSees has no material for the case's contact law."""
     model = case.contact.model
     if model not in CONTACT_MATERIALS:
-        reason = _LACKING.get(model, f"OpenSees has no material for it; the laws it has: {', '.join(CONTACT_MATERIALS)}")
-        raise CaseError("contact.model", f"{quote(model)} cannot be exported: {reason}")
+        reason = _LACKING.get(model, "OpenSees has no material for it")
+        raise CaseError("contact.model", f"{quote(model)} has no OpenSees equivalent: {reason}; use {', '.join(CONTACT_MATERIALS)}")
 
 
 def impact_duration(contact: Contact, reduced_mass: float, approach_velocity: float) -> float:
@@ -240,7 +239,7 @@ def model_script(case: Case, records: list[dict], time_step: float, reason: str,
         *_contact_lines(case),
         "",
         f"# Analysis step [s]: {reason}.",
-        "# Halving it moves F_max by under 0.1 % (docs/opensees.md; `python model.py --check-step` measures it here).",
+        "# Halving it moves F_max by under 0.1 % (pounding's docs/opensees.md; `python model.py --check-step` measures it here).",
         f"TIME_STEP = {_number(time_step)}",
         "",
         "# The records: file, sampling interval [s], samples, and how pounding names them.",

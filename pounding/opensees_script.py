@@ -31,8 +31,11 @@ BOUC_WEN_TOLERANCE = 1e-12
 NEWTON_TOLERANCE = 1e-10
 """[m] The equilibrium iterations of a step stop when the displacement increment is below this (NormDispIncr)."""
 NEWTON_ITERATIONS = 50
+"""Iterations Newton is given on a step."""
 FALLBACK_ALGORITHMS = (("NewtonLineSearch", "-type", "Bisection"), ("KrylovNewton",), ("ModifiedNewton", "-initial"))
 """Tried in turn, as OpenSees users do, on a step where Newton fails; then the step is cut in halves."""
+FALLBACK_ITERATIONS = 200
+"""Iterations each fallback algorithm is given."""
 MOST_STEP_CUTS = 8
 """A step still failing after this many halvings (1/256 of it) fails the record."""
 CONTACT_ELEMENT = 1
@@ -124,6 +127,7 @@ def set_up_analysis(ops, record):
 
 
 def record_path(record):
+    """The record's file, beside this script."""
     return os.path.join(os.path.dirname(os.path.abspath(__file__)), record["file"])
 
 
@@ -159,8 +163,10 @@ def advance(ops, step, watch, tally, cuts=0):
         return True
     for algorithm in FALLBACK_ALGORITHMS:
         ops.algorithm(*algorithm)
+        ops.test("NormDispIncr", NEWTON_TOLERANCE, FALLBACK_ITERATIONS)
         converged = ops.analyze(1, step) == 0
         ops.algorithm("Newton")
+        ops.test("NormDispIncr", NEWTON_TOLERANCE, NEWTON_ITERATIONS)
         if converged:
             tally[algorithm[0]] = tally.get(algorithm[0], 0) + 1
             watch.observe()
@@ -185,6 +191,7 @@ def run_record(ops, record, step):
 
 
 def arguments():
+    """The script's command-line options."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
     parser.add_argument("--step", type=float, default=TIME_STEP, help=f"analysis step [s] (default {TIME_STEP:g}, see TIME_STEP)")
     parser.add_argument("--records", type=int, default=len(RECORDS), help="run the first N records only")
@@ -196,6 +203,7 @@ def arguments():
 
 
 def main():
+    """Run the records; print a line for each, then the JSON summary; 1 when a record failed, else 0."""
     options = arguments()
     if not options.step > 0 or not 1 <= options.records <= len(RECORDS):
         sys.exit(f"model.py: --step must be > 0 s and --records in 1..{len(RECORDS)}")
@@ -216,7 +224,7 @@ def main():
     summary = {
         "case": CASE_NAME,
         "records": [record["name"] for record in RECORDS[:options.records]],
-        "force_max": [result["force_max"] for result in results],
+        "force_max": [result["force_max"] if result["completed"] else None for result in results],
         "impacts": [result["impacts"] for result in results],
         "cpu_seconds": [result["cpu_seconds"] for result in results],
         "time_step": options.step,
@@ -224,13 +232,18 @@ def main():
         "failed": failed,
         "units": {"force": "N", "time": "s"},
     }
-    print(f"fallbacks over {len(results)} records: "
-          + (", ".join(f"{name} {count} steps" for name, count in sorted(tally.items())) or "none (Newton converged on every step)"))
-    if options.check_step:
+    used = ", ".join(f"{name} {count}" for name, count in sorted(tally.items()))
+    print(f"over {len(results)} records, steps where Newton failed and a fallback converged, and step halvings: {used or 'none'}"
+          + (f"; {len(failed)} record(s) FAILED (force_max null)" if failed else ""))
+    if options.check_step and results[0]["completed"]:
         half = run_record(ops, RECORDS[0], options.step / 2)
         change = half["force_max"] / results[0]["force_max"] - 1.0 if results[0]["force_max"] > 0 else 0.0
-        print(f"step check, {RECORDS[0]['name']}: F_max {results[0]['force_max'] / 1e3:.3f} kN at {options.step:g} s, "
-              f"{half['force_max'] / 1e3:.3f} kN at {options.step / 2:g} s: {100 * change:+.3f} %")
-        summary["step_check"] = {"force_max_half_step": half["force_max"], "relative_change": change}
+        if not half["completed"]:
+            change = None
+            print(f"step check: {RECORDS[0]['name']} FAILED at half the step, t = {half['time']:.4f} s")
+        else:
+            print(f"step check, {RECORDS[0]['name']}: F_max {results[0]['force_max'] / 1e3:.3f} kN at {options.step:g} s, "
+                  f"{half['force_max'] / 1e3:.3f} kN at {options.step / 2:g} s: {100 * change:+.3f} %")
+        summary["step_check"] = {"force_max_half_step": half["force_max"] if half["completed"] else None, "relative_change": change}
     print(json.dumps(summary))
     return 1 if failed else 0
