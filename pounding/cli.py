@@ -401,6 +401,12 @@ def _records(args) -> int:
     return records_command(args)
 
 
+def _export(args) -> int:
+    from .cli_export import export_command
+
+    return export_command(args)
+
+
 def _sweep(args) -> int:
     from . import sweeps
     from .errors import CaseError
@@ -421,6 +427,7 @@ _COMMANDS = {
     "records": _records,
     "fragility": _fragility,
     "spectrum": _spectrum,
+    "export": _export,
     "dashboard": _dashboard,
 }
 

@@ -33,6 +33,7 @@ _EPILOG = """examples:
   pounding fragility section5-T2-0.4 --capacity 3e5 --pga 0.05:0.6:12 --records 100 -o fragility.html
   pounding spectrum section5-T2-0.4 --period1 0.2:2:30 --period2 0.4 -o spectrum.html
   pounding simulate my_case.toml --records 50 --json
+  pounding export opensees section5-T2-0.4 --records 20 --seed 1 -o opensees/
   pounding dashboard --port 5006
 """
 
@@ -181,6 +182,10 @@ def parser() -> argparse.ArgumentParser:
 
     cli_curves.add_fragility(commands)
     cli_curves.add_spectrum(commands)
+
+    from .cli_export import add_export  # light: the exporter loads when it runs
+
+    add_export(commands)
 
     sweeps.add_arguments(commands.add_parser(
         "sweep",
