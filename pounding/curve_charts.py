@@ -40,12 +40,11 @@ def _table(caption: str, header: list[str], rows: list[list[str]]) -> str:
 def write_chart_page(path: str | os.PathLike, title: str, layout, note: str, table: str, field: str = "--output") -> Path:
     """One HTML file: ``title``, the Bokeh ``layout``, ``note`` (plain text) and the numbers' ``table`` (HTML);
     written atomically (:func:`pounding.output.write_atomic`)."""
-    from bokeh.embed import components
-    from bokeh.resources import INLINE
+    from .bokeh_embed import embedded
 
-    script, division = components(layout)
+    script, (division,), library = embedded([layout])
     page = (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{html.escape(title)}</title>"
-            f"<style>{_STYLE}</style>{INLINE.render()}{script}</head><body><h1>{html.escape(title)}</h1>{division}"
+            f"<style>{_STYLE}</style>{library}{script}</head><body><h1>{html.escape(title)}</h1>{division}"
             f"<p class='note'>{html.escape(note)}</p>{table}</body></html>")
     path = Path(path)
     write_atomic(path, page, field)

@@ -151,13 +151,9 @@ def figures_html(figures: list[ReportFigure]) -> tuple[str, str, str]:
 
     Each figure is a ``<figure id="figure-N">`` whose caption is ``#figure-N-caption``; the list links to
     both, so a printed PDF keeps both as destinations (the tests read their pages from it)."""
-    from bokeh.embed import components
-    from bokeh.embed.bundle import bundle_for_objs_and_resources
-    from bokeh.resources import INLINE
+    from ..bokeh_embed import embedded
 
-    models = [plot for figure in figures for plot in figure.plots]
-    script, divs = components(models) if models else ("", ())
-    library = bundle_for_objs_and_resources(models, INLINE).scripts() if models else ""
+    script, divs, library = embedded([plot for figure in figures for plot in figure.plots])
     divs = iter(divs)
     listing, blocks = [], []
     for number, figure in enumerate(figures, start=1):

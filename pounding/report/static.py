@@ -12,13 +12,13 @@ import dataclasses
 import html
 import math
 import os
-import re
 from datetime import datetime, timezone
 from pathlib import Path
 
 import numpy as np
 
 from .. import __version__
+from ..bokeh_embed import without_external
 from ..case import Case, load_case
 from ..engineering import engineering_terms
 from ..output import check_target, write_atomic
@@ -160,21 +160,7 @@ def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None,
         f"<style>{REPORT_CSS}{RESULT_CSS}</style>{library}</head>"
         f'<body><main class="report">{body}</main>{script}</body></html>\n'
     )
-    return _without_server_scripts(page)
-
-
-_EXTERNAL = re.compile(
-    r'<script[^>]*\bsrc="(?!data:)[^"]*"[^>]*>\s*</script>\s*|<link[^>]*\brel="stylesheet"[^>]*\bhref="(?!data:)[^"]*"[^>]*>\s*'
-)
-
-
-def _without_server_scripts(text: str) -> str:
-    """Drop ``<script src=...>`` and stylesheet ``<link>`` tags: with Panel
-    imported (as in the dashboard's server), Bokeh's inline bundle still names
-    server-relative files of Panel's (an ES-module shim, Tabulator's CSS),
-    unused by the report, that a file cannot load. Everything the report
-    uses is inline."""
-    return _EXTERNAL.sub("", text)
+    return without_external(page)
 
 
 def write_report(path: str | os.PathLike, snapshot: Snapshot | Case, units: str = "SI", title: str | None = None,
