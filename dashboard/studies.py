@@ -251,25 +251,3 @@ def _same(a, b) -> bool:
     if isinstance(a, tuple | list) and isinstance(b, tuple | list):
         return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
     return a == b
-
-
-
-def _study_key(case):
-    """What a study with contact depends on apart from the gap (its points share one plot)."""
-    return None if case is None else (case.buildings, case.excitation, dataclasses.replace(case.contact, gap=0.0))
-
-
-def _free_motion_key(case):
-    """What the records' free motion, and so the design gap, depends on: not the contact law or the gap."""
-    return None if case is None else (case.buildings, case.excitation, case.contact.levels)
-
-
-def _same(a, b) -> bool:
-    """Equal, floats within a rounding error (the unit round trip), through dataclasses and tuples."""
-    if isinstance(a, float) and isinstance(b, float):
-        return math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-15)
-    if dataclasses.is_dataclass(a) and type(a) is type(b):
-        return all(_same(getattr(a, f.name), getattr(b, f.name)) for f in dataclasses.fields(a))
-    if isinstance(a, tuple | list) and isinstance(b, tuple | list):
-        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
-    return a == b

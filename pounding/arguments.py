@@ -12,7 +12,7 @@ import math
 
 from . import defaults
 
-__all__ = ["bounded_number", "probability", "record_count", "tolerance", "whole_number"]
+__all__ = ["bounded_number", "increasing_values", "probability", "record_count", "study_size", "tolerance", "whole_number"]
 
 
 def _shown(text: str) -> str:
@@ -117,3 +117,16 @@ def increasing_values(unit: str, minimum_count: int = 2):
         return values
 
     return parse
+
+
+def study_size(case, args, treated: str = "integrated once") -> tuple[int, int]:
+    """The records and seed of a study from ``--records`` and ``--seed``: for recorded motions, all of them (saying
+    on stderr, if either was given, that they do not apply and that each record is ``treated``)."""
+    import sys
+
+    if case.recorded:
+        if args.records is not None or args.seed is not None:
+            print(f"pounding {args.command}: note: --records and --seed do not apply to recorded motions: each of the "
+                  f"{len(case.hazard.records)} is {treated}", file=sys.stderr)
+        return len(case.hazard.records), defaults.SEED
+    return args.records or defaults.RECORDS, defaults.SEED if args.seed is None else args.seed

@@ -13,6 +13,7 @@ import warnings
 from functools import partial
 
 from . import defaults
+from .arguments import study_size
 from .cli_parser import EXIT_BAD_INPUT, parser
 
 
@@ -67,7 +68,7 @@ def _simulate(args) -> int:
     case = load_case(args.case)
     capacity = _capacity(args)
     settings = Settings(tolerance=args.tolerance)
-    records, seed = _study_size(case, args)
+    records, seed = study_size(case, args)
     bar = _progress_bar(records, sys.stderr.isatty())
     study = simulate if args.design_gap is None else partial(design_gap, target_probability=args.design_gap)
     try:
@@ -127,16 +128,6 @@ def _simulate(args) -> int:
     for warning in closed_form.warnings:
         print(f"  warning: {warning}")
     return 0
-
-
-def _study_size(case, args) -> tuple[int, int]:
-    """The records and seed of a study: all recorded motions once (saying so if --records or --seed was given)."""
-    if case.recorded:
-        if args.records is not None or args.seed is not None:
-            print(f"pounding {args.command}: note: --records and --seed do not apply to recorded motions: each of the "
-                  f"{len(case.hazard.records)} is integrated once", file=sys.stderr)
-        return len(case.hazard.records), defaults.SEED
-    return args.records or defaults.RECORDS, defaults.SEED if args.seed is None else args.seed
 
 
 def _records_text(case, count: int, seed: int) -> str:

@@ -5,10 +5,9 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 
 from . import defaults
-from .arguments import record_count, whole_number
+from .arguments import record_count, study_size, whole_number
 
 __all__ = ["add_export", "export_command"]
 
@@ -46,17 +45,6 @@ def add_export(commands) -> None:
     opensees.add_argument("--json", action="store_true", help="print one JSON object naming what was written")
 
 
-def _records_and_seed(case, args) -> tuple[int, int]:
-    """The records and seed ``pounding simulate`` takes for the same options: a recorded-motion case's
-    motions, all of them (saying so if --records or --seed was given)."""
-    if case.recorded:
-        if args.records is not None or args.seed is not None:
-            print(f"pounding export: note: --records and --seed do not apply to recorded motions: all "
-                  f"{len(case.hazard.records)} are written", file=sys.stderr)
-        return len(case.hazard.records), defaults.SEED
-    return args.records or defaults.RECORDS, defaults.SEED if args.seed is None else args.seed
-
-
 def export_command(args) -> int:
     """``pounding export opensees``: write the model, then say what was written and how to run it."""
     from .case import load_case
@@ -64,7 +52,7 @@ def export_command(args) -> int:
 
     case = load_case(args.case)
     check_exportable(case)
-    records, seed = _records_and_seed(case, args)
+    records, seed = study_size(case, args, "written")
     written = export_opensees(case, args.output, records=records, seed=seed, field="--output")
     if args.json:
         print(json.dumps({"case": case.name, "script": str(written.script), "records": [str(path) for path in written.record_files],

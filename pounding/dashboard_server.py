@@ -1,7 +1,7 @@
-"""The dashboard's server process (``pounding dashboard`` starts it): ``panel serve`` run in this process, which
-leads a process group of its own. With several server processes, Bokeh forks them from this one, which then only
-waits on them; a SIGTERM to this process (from ``pounding dashboard``, or from the kernel when that one dies)
-ends the whole group, so no forked server is left serving the port.
+"""The dashboard's server supervisor (``pounding dashboard`` starts it in a process group of its own): it runs
+``panel serve`` as its child, in the same group. With several server processes, Bokeh forks them from that
+child, which then only waits on them; a SIGTERM to this supervisor (from ``pounding dashboard``, or from the
+kernel when that one dies) ends the whole group, so no forked server is left serving the port.
 
     python -m pounding.dashboard_server APP --port N [panel serve options]
 """
@@ -10,25 +10,27 @@ from __future__ import annotations
 
 import os
 import signal
+import subprocess
 import sys
 
 __all__ = ["main"]
 
 
 def _end_group(signum, frame) -> None:
-    """SIGTERM to every process of this group (each forked server stops on it), this one included."""
+    """SIGTERM to every process of this group (each server stops on it), this one included."""
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     os.killpg(os.getpgrp(), signal.SIGTERM)
 
 
-def main(argv: list[str]) -> None:
-    """``panel serve`` with ``argv``, this process's SIGTERM ending its whole group."""
-    signal.signal(signal.SIGTERM, _end_group)  # the forked servers replace it with Bokeh's graceful stop
-    from panel.command import main as panel
-
-    sys.argv = ["panel", "serve", *argv]
-    panel()
+def main(argv: list[str]) -> int:
+    """``panel serve`` with ``argv`` as a child; this process's SIGTERM ends the whole group. Returns its exit code."""
+    signal.signal(signal.SIGTERM, _end_group)
+    server = subprocess.Popen([sys.executable, "-m", "panel", "serve", *argv])
+    try:
+        return server.wait()
+    except KeyboardInterrupt:  # Ctrl-C reaches the whole foreground group: the servers stop on their own
+        return server.wait()
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    sys.exit(main(sys.argv[1:]))

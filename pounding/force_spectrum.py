@@ -18,38 +18,9 @@ from .case import Case, as_case
 from .case_scaling import with_fundamental_periods
 from .errors import CaseError, ConvergenceError, finite_number, quote
 from .fragility import check_intensities
-from .monte_carlo_result import quantile_interval
+from .monte_carlo_study import MonteCarloForces, forces_at
 
-__all__ = ["ForceSpectrum", "MonteCarloSpectrum", "force_spectrum"]
-
-
-@dataclass(frozen=True, eq=False)
-class MonteCarloSpectrum:
-    """Every record's F_max [N] at each pair of periods."""
-
-    force_max: tuple[np.ndarray, ...]
-    seed: int
-
-    @property
-    def records(self) -> int:
-        return int(self.force_max[0].size)
-
-    @property
-    def force_mean(self) -> np.ndarray:
-        return np.array([float(np.mean(f)) for f in self.force_max])
-
-    def force_mean_interval(self) -> np.ndarray:
-        """95 % Student-t interval of each mean [N], shape (periods, 2)."""
-        from scipy.special import stdtrit
-
-        n = self.records
-        half = float(stdtrit(n - 1, 0.975)) * np.array([np.std(f, ddof=1) for f in self.force_max]) / np.sqrt(n)
-        return np.column_stack([self.force_mean - half, self.force_mean + half])
-
-    def quantile(self, probability: float) -> tuple[np.ndarray, np.ndarray]:
-        """The empirical quantile [N] at each pair of periods, and its distribution-free 95 % interval (periods, 2)."""
-        rows = [quantile_interval(f, probability) for f in self.force_max]
-        return np.array([r[0] for r in rows]), np.array([[r[1], r[2]] for r in rows], dtype=float)
+__all__ = ["ForceSpectrum", "force_spectrum"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -66,7 +37,7 @@ class ForceSpectrum:
         Closed-form E[F_max] (G19) and 84th percentile (G31) [N].
     pounding_probability : ndarray
         Closed-form P(at least one impact) (G31 at F = 0) [-].
-    monte_carlo : MonteCarloSpectrum or None
+    monte_carlo : MonteCarloForces or None
     """
 
     case: Case
@@ -75,7 +46,7 @@ class ForceSpectrum:
     force_mean: np.ndarray
     force_84: np.ndarray
     pounding_probability: np.ndarray
-    monte_carlo: MonteCarloSpectrum | None = None
+    monte_carlo: MonteCarloForces | None = None
 
     def to_dict(self) -> dict:
         """JSON-ready: periods in s, forces in N."""
@@ -159,8 +130,6 @@ def force_spectrum(
         return spectrum
     if isinstance(case, Case):
         raise CaseError("case", "the Monte Carlo runs on the case file: give a preset name, a path or the parsed file")
-    from .monte_carlo_study import forces_at
-
     adjustments = [{"period1": float(t1), "period2": float(t2)} for t1, t2 in zip(period1, periods2)]
     forces = forces_at(case, adjustments, records, seed, work_dir, scheduler, workers, progress, "force spectrum")
-    return ForceSpectrum(**{**spectrum.__dict__, "monte_carlo": MonteCarloSpectrum(tuple(forces), seed)})
+    return ForceSpectrum(**{**spectrum.__dict__, "monte_carlo": MonteCarloForces(tuple(forces), seed)})

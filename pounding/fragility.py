@@ -19,10 +19,10 @@ from .case import Case, as_case
 from .case_scaling import PeakGroundAcceleration
 from .errors import CaseError, ConvergenceError, check_limit, finite_number, quote
 from .force_distribution import force_distribution_of
-from .monte_carlo_result import wilson_interval
+from .monte_carlo_study import MonteCarloForces, forces_at
 from .units import STANDARD_GRAVITY
 
-__all__ = ["FragilityCurve", "LognormalFragility", "MonteCarloCounts", "check_intensities", "fit_lognormal", "fragility_curve"]
+__all__ = ["FragilityCurve", "LognormalFragility", "check_intensities", "fit_lognormal", "fragility_curve"]
 
 DISPERSION_RANGE = (0.01, 5.0)
 """Dispersions beta the lognormal fit may take [-]: a fit at an end says the data do not pin it (all or none exceed
@@ -99,26 +99,6 @@ def _starts(log_pga: np.ndarray, fractions: np.ndarray) -> list[tuple[float, flo
 
 
 @dataclass(frozen=True, eq=False)
-class MonteCarloCounts:
-    """The Monte Carlo side of a fragility curve: every record's F_max [N] at each PGA."""
-
-    force_max: tuple[np.ndarray, ...]
-    seed: int
-
-    @property
-    def records(self) -> int:
-        return int(self.force_max[0].size)
-
-    def exceeding(self, capacity: float) -> np.ndarray:
-        """Records with F_max > capacity [N] at each PGA."""
-        return np.array([int(np.sum(forces > capacity)) for forces in self.force_max])
-
-    def intervals(self, capacity: float) -> np.ndarray:
-        """Wilson's 95 % interval of the exceeding fraction at each PGA, shape (PGAs, 2)."""
-        return np.array([wilson_interval(int(k), self.records) for k in self.exceeding(capacity)])
-
-
-@dataclass(frozen=True, eq=False)
 class FragilityCurve:
     """P(F_max > capacity) against the expected PGA, closed form and (optionally) Monte Carlo.
 
@@ -138,7 +118,7 @@ class FragilityCurve:
         The case's own expected PGA [m/s^2].
     lognormal : LognormalFragility or None
         Fitted to the closed-form curve.
-    monte_carlo : MonteCarloCounts or None
+    monte_carlo : MonteCarloForces or None
     lognormal_monte_carlo : LognormalFragility or None
         Fitted to the Monte Carlo counts.
     """
@@ -151,7 +131,7 @@ class FragilityCurve:
     force_84: np.ndarray
     reference_pga: float
     lognormal: LognormalFragility | None
-    monte_carlo: MonteCarloCounts | None = None
+    monte_carlo: MonteCarloForces | None = None
     lognormal_monte_carlo: LognormalFragility | None = None
 
     def to_dict(self) -> dict:
@@ -258,9 +238,7 @@ def fragility_curve(
         return curve
     if isinstance(case, Case):
         raise CaseError("case", "the Monte Carlo runs on the case file: give a preset name, a path or the parsed file")
-    from .monte_carlo_study import forces_at
-
-    counts = MonteCarloCounts(tuple(forces_at(case, [{"pga": float(a)} for a in pga], records, seed, work_dir, scheduler,
+    counts = MonteCarloForces(tuple(forces_at(case, [{"pga": float(a)} for a in pga], records, seed, work_dir, scheduler,
                                               workers, progress, "fragility")), seed)
     exceeding = counts.exceeding(capacity)
     return FragilityCurve(**{**curve.__dict__, "monte_carlo": counts,

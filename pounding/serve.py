@@ -11,13 +11,14 @@ port once ``pounding dashboard`` has ended.
 from __future__ import annotations
 
 import argparse
-import os
 from pathlib import Path
 
 __all__ = ["dashboard_app_path", "port_number", "serve_dashboard"]
 
-SERVER_PROCESSES = max(1, min(os.cpu_count() or 1, 4))
-"""Server processes of ``pounding dashboard``: one per core (at most 4), each serving its share of the sessions."""
+SERVER_PROCESSES = 1
+"""Server processes of ``pounding dashboard``. One: the sessions' computations share its thread pool (one thread a
+core). Two processes answered five busy sessions faster (benchmarks/dashboard_latency.py), but with Panel 1.9 a
+forked server process may load Panel's style sheets from its CDN, which an offline page cannot reach."""
 _STOP_TIMEOUT = 5.0  # [s] the child's time to shut down after SIGTERM, before SIGKILL
 
 
@@ -128,8 +129,6 @@ def serve_dashboard(port: int = 5006, show: bool = False, extra_origins: list[st
     if not app.is_file():
         raise CaseError("dashboard", f"the dashboard script {app} is missing; reinstall pounding (python3 -m pip install pounding)")
     port = port or _free_port()
-    # One server process per core: five sessions changing an input at once see the new force in a median 301 ms
-    # against 388 ms in one process (benchmarks/dashboard_latency.py, 2 cores).
     command = [sys.executable, "-m", "pounding.dashboard_server", str(app), "--port", str(port), "--num-procs", str(SERVER_PROCESSES)]
     origins = [f"localhost:{port}", f"127.0.0.1:{port}", *(extra_origins or [])]
     for origin in origins:
