@@ -18,6 +18,7 @@ from .case import Case, as_case
 from .case_scaling import with_fundamental_periods
 from .errors import CaseError, ConvergenceError, finite_number, quote
 from .fragility import check_intensities
+from .blas import single_blas_thread
 from .monte_carlo_study import MonteCarloForces, forces_at
 
 __all__ = ["ForceSpectrum", "force_spectrum"]
@@ -115,11 +116,12 @@ def force_spectrum(
                                    f"percentile, got {records}")
     base = case if isinstance(case, Case) else as_case(case)
     distributions = []
-    for t1, t2 in zip(period1, periods2):
-        try:
-            distributions.append(force_distribution_of(with_fundamental_periods(base, t1, t2)))
-        except ConvergenceError as error:
-            raise ConvergenceError(f"at T1 = {t1:.4g} s, T2 = {t2:.4g} s: {error}") from None
+    with single_blas_thread():
+        for t1, t2 in zip(period1, periods2):
+            try:
+                distributions.append(force_distribution_of(with_fundamental_periods(base, t1, t2)))
+            except ConvergenceError as error:
+                raise ConvergenceError(f"at T1 = {t1:.4g} s, T2 = {t2:.4g} s: {error}") from None
     spectrum = ForceSpectrum(
         case=base, period1=period1, period2=periods2,
         force_mean=np.array([d.mean() for d in distributions]),

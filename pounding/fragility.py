@@ -19,6 +19,7 @@ from .case import Case, as_case
 from .case_scaling import PeakGroundAcceleration
 from .errors import CaseError, ConvergenceError, check_limit, finite_number, quote
 from .force_distribution import force_distribution_of
+from .blas import single_blas_thread
 from .monte_carlo_study import MonteCarloForces, forces_at
 from .units import STANDARD_GRAVITY
 
@@ -222,11 +223,12 @@ def fragility_curve(
     base = as_case(case) if not isinstance(case, Case) else case
     scaling = PeakGroundAcceleration(base)
     distributions = []
-    for value in pga:
-        try:
-            distributions.append(force_distribution_of(scaling.case_at(value)))
-        except ConvergenceError as error:
-            raise ConvergenceError(f"at PGA {value / STANDARD_GRAVITY:.4g} g: {error}") from None
+    with single_blas_thread():
+        for value in pga:
+            try:
+                distributions.append(force_distribution_of(scaling.case_at(value)))
+            except ConvergenceError as error:
+                raise ConvergenceError(f"at PGA {value / STANDARD_GRAVITY:.4g} g: {error}") from None
     probability = np.array([d.probability_exceeding(capacity) for d in distributions])
     curve = FragilityCurve(
         case=base, capacity=capacity, pga=pga, probability=probability,
