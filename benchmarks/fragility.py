@@ -21,6 +21,7 @@ from pounding import Settings, estimate, load_case, simulate
 from pounding.case_scaling import PeakGroundAcceleration
 from pounding.force_spectrum import force_spectrum
 from pounding.fragility import fragility_curve
+from pounding.monte_carlo_study import MonteCarloPlan
 from pounding.units import STANDARD_GRAVITY
 from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
@@ -52,7 +53,7 @@ def main() -> None:
 
     def engine():
         with tempfile.TemporaryDirectory() as folder:
-            fragility_curve(CASE, 3e5, np.array([0.3, 0.31]) * STANDARD_GRAVITY, records=100, seed=1, scheduler="serial", work_dir=folder)
+            fragility_curve(CASE, 3e5, np.array([0.3, 0.31]) * STANDARD_GRAVITY, MonteCarloPlan(100, 1, folder, "serial"))
 
     on_engine = median_seconds(engine, repeats=3) / 2
     print(f"Monte Carlo, 100 records a PGA          {on_engine:7.2f} s    (simulate of the same records, one thread, {direct:.2f} s; ratio {on_engine / direct:.2f})")

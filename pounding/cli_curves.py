@@ -89,6 +89,15 @@ def _progress(args, points: int):
     return bar, lambda done, total: bar.update(done - bar.n)
 
 
+def _plan(args, progress):
+    """The Monte Carlo side the options ask for (none without --records)."""
+    from .monte_carlo_study import MonteCarloPlan
+
+    if not args.records:
+        return None
+    return MonteCarloPlan(args.records, args.seed, args.work_dir, args.scheduler, args.workers, progress)
+
+
 def _run(args, compute, chart, title: str):
     """Check the chart's target, compute (library errors named by the option typed), write the chart."""
     from .errors import CaseError
@@ -121,9 +130,7 @@ def run_fragility(args) -> int:
     capacity = args.capacity * shown.system.force  # kgf -> N with --units kgf-cm-s
 
     def compute(progress):
-        return fragility_curve(args.case, capacity, [a * STANDARD_GRAVITY for a in args.pga], records=args.records,
-                               seed=args.seed, work_dir=args.work_dir, scheduler=args.scheduler, workers=args.workers,
-                               progress=progress)
+        return fragility_curve(args.case, capacity, [a * STANDARD_GRAVITY for a in args.pga], _plan(args, progress))
 
     from .curve_charts import fragility_chart
 
@@ -166,9 +173,7 @@ def run_spectrum(args) -> int:
     shown = display(args.units)
 
     def compute(progress):
-        return force_spectrum(args.case, args.period1, period_ratio=args.period_ratio, period2=args.period2,
-                              records=args.records, seed=args.seed, work_dir=args.work_dir, scheduler=args.scheduler,
-                              workers=args.workers, progress=progress)
+        return force_spectrum(args.case, args.period1, args.period_ratio, args.period2, _plan(args, progress))
 
     from .curve_charts import spectrum_chart
 

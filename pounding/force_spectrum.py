@@ -7,8 +7,7 @@ counterpart of Jankowski's (2006) deterministic pounding force response spectrum
 
 from __future__ import annotations
 
-import os
-from collections.abc import Callable
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -17,9 +16,9 @@ from . import defaults
 from .case import Case, as_case
 from .case_scaling import with_fundamental_periods
 from .errors import CaseError, ConvergenceError, finite_number, quote
-from .fragility import check_intensities
 from .blas import single_blas_thread
-from .monte_carlo_study import MonteCarloForces, forces_at
+from .fragility import check_intensities
+from .monte_carlo_study import MonteCarloForces, MonteCarloPlan
 
 __all__ = ["ForceSpectrum", "force_spectrum"]
 
@@ -85,35 +84,21 @@ def _periods_of_building_2(period1: np.ndarray, period_ratio, period2) -> np.nda
     return period1 * value if period2 is None else np.full(period1.shape, value)
 
 
-def force_spectrum(
-    case,
-    period1,
-    period_ratio: float | None = None,
-    period2: float | None = None,
-    records: int = 0,
-    seed: int = defaults.SEED,
-    work_dir: str | os.PathLike | None = None,
-    scheduler=None,
-    workers: int | None = None,
-    progress: Callable[[int, int], None] | None = None,
-) -> ForceSpectrum:
+def force_spectrum(case, period1, period_ratio: float | None = None, period2: float | None = None,
+                   monte_carlo: MonteCarloPlan | None = None) -> ForceSpectrum:
     """The force spectrum of ``case`` over building 1's fundamental periods ``period1`` [s].
 
     Building 2's period is ``period_ratio`` x T1 or ``period2`` [s] (give one). Each building is made stiffer or
     softer, its masses, yield drifts, damping ratio, the gap, the restitution and the ground motion held
-    (:func:`~pounding.case_scaling.with_fundamental_periods`). ``records`` Monte Carlo records a point (0: none;
-    at least :data:`~pounding.defaults.SPECTRUM_MIN_RECORDS`); ``seed``, ``work_dir``, ``scheduler``,
-    ``workers``, ``progress`` as :func:`~pounding.fragility.fragility_curve`.
+    (:func:`~pounding.case_scaling.with_fundamental_periods`). ``monte_carlo``: also Monte Carlo at each period,
+    at least :data:`~pounding.defaults.SPECTRUM_MIN_RECORDS` records.
     """
     from .force_distribution import force_distribution_of
 
     period1 = check_intensities(period1, "period1")
     periods2 = _periods_of_building_2(period1, period_ratio, period2)
-    if isinstance(records, bool) or not isinstance(records, (int, np.integer)) or records < 0:
-        raise CaseError("records", f"must be a whole number >= 0, got {quote(records)}")
-    if 0 < records < defaults.SPECTRUM_MIN_RECORDS:
-        raise CaseError("records", f"must be 0 or at least {defaults.SPECTRUM_MIN_RECORDS} for an interval of the 84th "
-                                   f"percentile, got {records}")
+    if monte_carlo is not None:
+        monte_carlo.check(defaults.SPECTRUM_MIN_RECORDS, "for an interval of the 84th percentile")
     base = case if isinstance(case, Case) else as_case(case)
     distributions = []
     with single_blas_thread():
@@ -128,10 +113,7 @@ def force_spectrum(
         force_84=np.array([d.quantile(0.84) for d in distributions]),
         pounding_probability=np.array([1.0 - d.no_impact_probability for d in distributions]),
     )
-    if not records:
+    if monte_carlo is None:
         return spectrum
-    if isinstance(case, Case):
-        raise CaseError("case", "the Monte Carlo runs on the case file: give a preset name, a path or the parsed file")
     adjustments = [{"period1": float(t1), "period2": float(t2)} for t1, t2 in zip(period1, periods2)]
-    forces = forces_at(case, adjustments, records, seed, work_dir, scheduler, workers, progress, "force spectrum")
-    return ForceSpectrum(**{**spectrum.__dict__, "monte_carlo": MonteCarloForces(tuple(forces), seed)})
+    return dataclasses.replace(spectrum, monte_carlo=monte_carlo.forces(case, adjustments, "force spectrum"))

@@ -6,9 +6,8 @@ fitted by maximum likelihood (F3-F4). docs/fragility.md.
 
 from __future__ import annotations
 
+import dataclasses
 import math
-import os
-from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -20,7 +19,7 @@ from .case_scaling import PeakGroundAcceleration
 from .errors import CaseError, ConvergenceError, check_limit, finite_number, quote
 from .force_distribution import force_distribution_of
 from .blas import single_blas_thread
-from .monte_carlo_study import MonteCarloForces, forces_at
+from .monte_carlo_study import MonteCarloForces, MonteCarloPlan
 from .units import STANDARD_GRAVITY
 
 __all__ = ["FragilityCurve", "LognormalFragility", "check_intensities", "fit_lognormal", "fragility_curve"]
@@ -178,18 +177,8 @@ def check_intensities(values, field: str = "pga") -> np.ndarray:
     return values
 
 
-def fragility_curve(
-    case,
-    capacity: float,
-    pga,
-    records: int = 0,
-    seed: int = defaults.SEED,
-    work_dir: str | os.PathLike | None = None,
-    scheduler=None,
-    workers: int | None = None,
-    progress: Callable[[int, int], None] | None = None,
-) -> FragilityCurve:
-    """P(F_max > ``capacity``) at each expected PGA, closed form and, with ``records``, Monte Carlo.
+def fragility_curve(case, capacity: float, pga, monte_carlo: MonteCarloPlan | None = None) -> FragilityCurve:
+    """P(F_max > ``capacity``) at each expected PGA, closed form and, with ``monte_carlo``, Monte Carlo.
 
     Parameters
     ----------
@@ -199,27 +188,15 @@ def fragility_curve(
     pga : array_like
         Expected peak ground accelerations [m/s^2], > 0, increasing. The case's ground motion is scaled to each
         (:class:`~pounding.case_scaling.PeakGroundAcceleration`; recorded motions: every record to that peak).
-    records : int
-        Monte Carlo records at each PGA (0: none); at least :data:`~pounding.defaults.FRAGILITY_MIN_RECORDS`.
-        Recorded motions: the first ``records`` of the suite.
-    seed : int
-        Seed of the Monte Carlo study.
-    work_dir : path, optional
-        Folder of the finished Monte Carlo chunks (the sweep's files): rerun with it to resume. Default: a
-        temporary folder, removed at the end.
-    scheduler, workers
-        As :func:`pounding.sweep` (None: a local Dask cluster; ``"serial"``: in this process).
-    progress : callable, optional
-        ``progress(done, total)`` in records.
+    monte_carlo : MonteCarloPlan, optional
+        Also Monte Carlo at each PGA, at least :data:`~pounding.defaults.FRAGILITY_MIN_RECORDS` records.
     """
     capacity = finite_number("capacity", capacity)
     if not capacity > 0:
         raise CaseError("capacity", f"must be > 0 N, got {quote(capacity)}")
     pga = check_intensities(pga)
-    if isinstance(records, bool) or not isinstance(records, (int, np.integer)) or records < 0:
-        raise CaseError("records", f"must be a whole number >= 0, got {quote(records)}")
-    if 0 < records < defaults.FRAGILITY_MIN_RECORDS:
-        raise CaseError("records", f"must be 0 or at least {defaults.FRAGILITY_MIN_RECORDS} for a useful interval, got {records}")
+    if monte_carlo is not None:
+        monte_carlo.check(defaults.FRAGILITY_MIN_RECORDS, "for a useful interval")
     base = as_case(case) if not isinstance(case, Case) else case
     scaling = PeakGroundAcceleration(base)
     distributions = []
@@ -236,13 +213,8 @@ def fragility_curve(
         force_84=np.array([d.quantile(0.84) for d in distributions]),
         reference_pga=scaling.reference, lognormal=fit_lognormal(pga, probability, 1.0),
     )
-    if not records:
+    if monte_carlo is None:
         return curve
-    if isinstance(case, Case):
-        raise CaseError("case", "the Monte Carlo runs on the case file: give a preset name, a path or the parsed file")
-    counts = MonteCarloForces(tuple(forces_at(case, [{"pga": float(a)} for a in pga], records, seed, work_dir, scheduler,
-                                              workers, progress, "fragility")), seed)
-    exceeding = counts.exceeding(capacity)
-    return FragilityCurve(**{**curve.__dict__, "monte_carlo": counts,
-                             "lognormal_monte_carlo": fit_lognormal(pga, exceeding, counts.records)})
-
+    counts = monte_carlo.forces(case, [{"pga": float(a)} for a in pga], "fragility")
+    return dataclasses.replace(curve, monte_carlo=counts,
+                               lognormal_monte_carlo=fit_lognormal(pga, counts.exceeding(capacity), counts.records))

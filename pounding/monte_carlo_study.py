@@ -12,11 +12,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import defaults
 from .case import as_case
-from .errors import CaseError
+from .errors import CaseError, quote
 from .monte_carlo_result import quantile_interval, wilson_interval
 
-__all__ = ["MonteCarloForces", "forces_at"]
+__all__ = ["MonteCarloForces", "MonteCarloPlan"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -57,26 +58,55 @@ class MonteCarloForces:
         return np.array([wilson_interval(int(k), self.records) for k in self.exceeding(capacity)])
 
 
-def forces_at(
-    case,
-    adjustments: Sequence[Mapping],
-    records: int,
-    seed: int,
-    work_dir: str | os.PathLike | None,
-    scheduler,
-    workers: int | None,
-    progress: Callable[[int, int], None] | None,
-    label: str,
-) -> list[np.ndarray]:
-    """Every record's F_max [N] at each of ``adjustments`` of ``case`` (a preset name, a case file or the parsed
-    file): :func:`pounding.sweeps.monte_carlo_forces`, its chunks in ``work_dir`` (resumable) or in a temporary
-    folder removed at the end. A recorded case takes the first ``records`` of its suite."""
-    loaded = as_case(case)
-    if loaded.recorded and records > len(loaded.hazard.records):
-        raise CaseError("records", f"the case has {len(loaded.hazard.records)} recorded motions; give --records at most that")
-    from .sweeps import monte_carlo_forces
+@dataclass(frozen=True)
+class MonteCarloPlan:
+    """How the Monte Carlo side of a fragility curve or a force spectrum runs.
 
-    if work_dir is not None:
-        return monte_carlo_forces(case, adjustments, records, seed, work_dir, scheduler, progress=progress, workers=workers, label=label)
-    with tempfile.TemporaryDirectory(prefix="pounding-") as folder:
-        return monte_carlo_forces(case, adjustments, records, seed, folder, scheduler, progress=progress, workers=workers, label=label)
+    Attributes
+    ----------
+    records : int
+        Records at each point (a recorded case: the first ``records`` of its suite).
+    seed : int
+        Seed of the study: record i is seeded alike at every point.
+    work_dir : path, optional
+        Folder of the finished chunks (the sweep's files): rerun with it to resume. Default: a temporary
+        folder, removed at the end.
+    scheduler, workers
+        As :func:`pounding.sweep` (None: a local Dask cluster; ``"serial"``: in this process).
+    progress : callable, optional
+        ``progress(done, total)`` in records.
+    """
+
+    records: int
+    seed: int = defaults.SEED
+    work_dir: str | os.PathLike | None = None
+    scheduler: object = None
+    workers: int | None = None
+    progress: Callable[[int, int], None] | None = None
+
+    def check(self, minimum: int, why: str) -> None:
+        """:class:`CaseError` naming ``records`` unless it is a whole number >= ``minimum`` (``why`` says what for)."""
+        records = self.records
+        if isinstance(records, bool) or not isinstance(records, (int, np.integer)) or records < minimum:
+            raise CaseError("records", f"must be at least {minimum} {why}, got {quote(records)}")
+
+    def forces(self, case, adjustments: Sequence[Mapping], label: str) -> MonteCarloForces:
+        """Every record's F_max at each of ``adjustments`` of ``case`` (a preset name, a case file or the parsed
+        file; a loaded Case has no file for the workers to load): :func:`pounding.sweeps.monte_carlo_forces`."""
+        from .case import Case
+
+        if isinstance(case, Case):
+            raise CaseError("case", "the Monte Carlo runs on the case file: give a preset name, a path or the parsed file")
+        loaded = as_case(case)
+        if loaded.recorded and self.records > len(loaded.hazard.records):
+            raise CaseError("records", f"the case has {len(loaded.hazard.records)} recorded motions; give --records at most that")
+        from .sweeps import monte_carlo_forces
+
+        def run(folder):
+            return monte_carlo_forces(case, adjustments, self.records, self.seed, folder, self.scheduler, progress=self.progress,
+                                      workers=self.workers, label=label)
+
+        if self.work_dir is not None:
+            return MonteCarloForces(tuple(run(self.work_dir)), self.seed)
+        with tempfile.TemporaryDirectory(prefix="pounding-") as folder:
+            return MonteCarloForces(tuple(run(folder)), self.seed)

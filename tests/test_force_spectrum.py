@@ -12,6 +12,7 @@ from pounding import load_case, simulate
 from pounding.case_scaling import with_fundamental_periods
 from pounding.cli import main
 from pounding.force_spectrum import force_spectrum
+from pounding.monte_carlo_study import MonteCarloPlan
 from pounding.validation import mdof_case
 
 SECTION5 = "section5-T2-0.4"
@@ -43,7 +44,7 @@ def test_explicit_storey_damping_keeps_its_ratio():
 
 
 def test_identical_buildings_never_pound_in_either_method():
-    spectrum = force_spectrum(SECTION5, [0.3, 0.4, 0.5], period2=0.4, records=22, scheduler="serial")
+    spectrum = force_spectrum(SECTION5, [0.3, 0.4, 0.5], period2=0.4, monte_carlo=MonteCarloPlan(22, scheduler="serial"))
     assert spectrum.force_mean[1] == 0.0 and spectrum.force_84[1] == 0.0 and spectrum.pounding_probability[1] == 0.0
     assert np.all(spectrum.monte_carlo.force_max[1] == 0.0)
     assert spectrum.force_mean[0] > 0 and spectrum.force_mean[2] > 0
@@ -51,7 +52,7 @@ def test_identical_buildings_never_pound_in_either_method():
 
 @pytest.fixture(scope="module")
 def section5_spectrum():
-    return force_spectrum(SECTION5, np.linspace(0.6, 2.0, 6), period2=0.4, records=100, seed=3, scheduler="serial")
+    return force_spectrum(SECTION5, np.linspace(0.6, 2.0, 6), period2=0.4, monte_carlo=MonteCarloPlan(100, 3, scheduler="serial"))
 
 
 def test_closed_form_spectrum_against_monte_carlo(section5_spectrum):

@@ -15,6 +15,7 @@ from pounding.case_scaling import PeakGroundAcceleration
 from pounding.cli import main
 from pounding.excitation import ground_accelerations
 from pounding.fragility import fit_lognormal, fragility_curve
+from pounding.monte_carlo_study import MonteCarloPlan
 from pounding.motion_fit import fit_excitation
 from pounding.peak_factors import expected_peak_ground_acceleration
 from pounding.presets import preset_text
@@ -27,7 +28,7 @@ PGAS = np.linspace(0.05, 0.6, 12) * G
 @pytest.fixture(scope="module")
 def section5_curve():
     """The issue's check: capacity 0.3 MN, 0.05-0.6 g, 100 records a point."""
-    return fragility_curve(SECTION5, 3.0e5, PGAS, records=100, seed=2, scheduler="serial")
+    return fragility_curve(SECTION5, 3.0e5, PGAS, MonteCarloPlan(100, 2, scheduler="serial"))
 
 
 def test_closed_form_rises_with_pga_and_lies_within_010_of_monte_carlo(section5_curve):
@@ -109,9 +110,9 @@ def test_recorded_motions_are_each_scaled_to_the_pga(suite):
 def test_a_recorded_suite_needs_as_many_records_as_asked(suite):
     """Each record is run once at each PGA: more records than the suite holds, or fewer than an interval needs, are refused."""
     with pytest.raises(ValueError, match="at least 10"):
-        fragility_curve(str(suite / "case.toml"), 2.0e5, np.array([0.2, 0.4]) * G, records=6, scheduler="serial")
+        fragility_curve(str(suite / "case.toml"), 2.0e5, np.array([0.2, 0.4]) * G, MonteCarloPlan(6, scheduler="serial"))
     with pytest.raises(ValueError, match="6 recorded motions"):
-        fragility_curve(str(suite / "case.toml"), 2.0e5, np.array([0.2, 0.4]) * G, records=12, scheduler="serial")
+        fragility_curve(str(suite / "case.toml"), 2.0e5, np.array([0.2, 0.4]) * G, MonteCarloPlan(12, scheduler="serial"))
 
 
 def test_lognormal_fit_recovers_a_known_curve():
@@ -136,13 +137,13 @@ def test_lognormal_fit_recovers_a_known_curve():
 
 def test_serial_and_two_dask_workers_give_the_same_counts_and_a_rerun_resumes(tmp_path):
     pga = np.array([0.3, 0.45]) * G
-    serial = fragility_curve(SECTION5, 3.0e5, pga, records=12, seed=4, scheduler="serial", work_dir=tmp_path / "a")
-    dask = fragility_curve(SECTION5, 3.0e5, pga, records=12, seed=4, workers=2, work_dir=tmp_path / "b")
+    serial = fragility_curve(SECTION5, 3.0e5, pga, MonteCarloPlan(12, 4, tmp_path / "a", "serial"))
+    dask = fragility_curve(SECTION5, 3.0e5, pga, MonteCarloPlan(12, 4, tmp_path / "b", workers=2))
     for one, other in zip(serial.monte_carlo.force_max, dask.monte_carlo.force_max):
         np.testing.assert_array_equal(one, other)
     chunks = sorted((tmp_path / "a").glob("points/*/chunk-*.json"))
     stamps = [path.stat().st_mtime_ns for path in chunks]
-    again = fragility_curve(SECTION5, 3.0e5, pga, records=12, seed=4, scheduler="serial", work_dir=tmp_path / "a")
+    again = fragility_curve(SECTION5, 3.0e5, pga, MonteCarloPlan(12, 4, tmp_path / "a", "serial"))
     assert [path.stat().st_mtime_ns for path in chunks] == stamps  # nothing recomputed
     np.testing.assert_array_equal(again.monte_carlo.force_max[1], serial.monte_carlo.force_max[1])
 

@@ -15,6 +15,7 @@ import numpy as np
 
 from pounding.force_spectrum import force_spectrum
 from pounding.fragility import fragility_curve
+from pounding.monte_carlo_study import MonteCarloPlan
 from pounding.units import STANDARD_GRAVITY
 
 RECORDS, SEED = 100, 5
@@ -34,7 +35,7 @@ def fragilities(records: int = RECORDS, seed: int = SEED, cases=FRAGILITIES) -> 
     """Print each fragility curve; returns the largest |closed form - Monte Carlo| of each."""
     largest = []
     for name, capacity, pga in cases:
-        curve = fragility_curve(name, capacity, pga * STANDARD_GRAVITY, records=records, seed=seed, scheduler="serial")
+        curve = fragility_curve(name, capacity, pga * STANDARD_GRAVITY, MonteCarloPlan(records, seed, scheduler="serial"))
         fractions = curve.monte_carlo.exceeding(capacity) / records
         intervals = curve.monte_carlo.intervals(capacity)
         print(f"\n{name}, capacity {capacity / 1e3:g} kN, {records} records a point, seed {seed}")
@@ -52,7 +53,7 @@ def fragilities(records: int = RECORDS, seed: int = SEED, cases=FRAGILITIES) -> 
 
 def spectra(records: int = RECORDS, seed: int = SEED, cases=SPECTRA) -> None:
     for name, period1, ratio, period2 in cases:
-        spectrum = force_spectrum(name, period1, period_ratio=ratio, period2=period2, records=records, seed=seed, scheduler="serial")
+        spectrum = force_spectrum(name, period1, ratio, period2, MonteCarloPlan(records, seed, scheduler="serial"))
         mc = spectrum.monte_carlo
         q84 = mc.quantile(0.84)[0]
         second = f"T2 = {ratio:g} T1" if ratio is not None else f"T2 = {period2:g} s"
