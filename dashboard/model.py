@@ -38,6 +38,7 @@ from dashboard.inputs import building_params, design_params, dimensions, excitat
 from dashboard.messages import message
 from dashboard.runner import Latest
 from dashboard.studies import Studies
+from dashboard.visibility import applies
 
 __all__ = ["PoundingModel"]
 
@@ -104,17 +105,11 @@ class PoundingModel(Studies):
         out = []
         for name, before in self._preset_values.items():
             now = getattr(self, name)
-            if name.startswith("stiffness_") or not _differs(before, now) or not self._applies(name):
+            if name.startswith("stiffness_") or not _differs(before, now) or not applies(self, name):
                 continue  # the storey stiffness is derived from the period, and shown only
             unit = shown.label(**dims[name]) if name in dims else ""
             out.append((self.param[name].label, before, now, unit))
         return out
-
-    def _applies(self, name: str) -> bool:
-        """Whether input ``name`` enters the case as the other inputs stand (hidden inputs do not)."""
-        from dashboard.visibility import applies
-
-        return applies(self, name)
 
     def build_case(self, data: dict | None = None):
         """The case of the current inputs (raises CaseError naming the input)."""
@@ -204,29 +199,29 @@ class PoundingModel(Studies):
         """Convert the dimensional inputs to the new unit system (the case is unchanged)."""
         old, new = display_system(self._shown_units), display_system(self.units)
         self._shown_units = self.units
-        converted = {}
-        for name, dims in dimensions(self).items():
-            converted[name] = new.from_si(old.to_si(getattr(self, name), **dims), **dims)
-        for name in list(self._preset_values):
-            if name in converted:
-                dims = dimensions(self)[name]
-                self._preset_values[name] = new.from_si(old.to_si(self._preset_values[name], **dims), **dims)
-        self._set_quietly(converted)
+        dims = dimensions(self)
+        convert = lambda name, value: new.from_si(old.to_si(value, **dims[name]), **dims[name])  # noqa: E731
+        self._preset_values = {name: convert(name, value) if name in dims else value for name, value in self._preset_values.items()}
+        self._set_quietly({name: convert(name, getattr(self, name)) for name in dims})
         self.recompute()
 
     @param.depends("storeys_1", "storeys_2", watch=True)
     def _on_storeys(self):
-        """More or fewer storeys keep the fundamental period: the storey stiffness follows, and the page says so."""
+        """More or fewer storeys keep the fundamental period: the storey stiffness follows, and the page says so
+        (and where a contact floor no longer exists, that it moved)."""
         if self._syncing:
             return
+        notes = [f"The storey stiffness follows the number of storeys: T1 = {self.period_1:.3g} s and T2 = {self.period_2:.3g} s are kept."]
+        moved = False
         for b in (1, 2):
             count = getattr(self, f"storeys_{b}")
-            level = getattr(self, f"level_{b}")
-            if level > count:
+            if getattr(self, f"level_{b}") > count:
                 self._set_quietly({f"level_{b}": count})
-                self.note = f"Building {b}'s contact floor moved to {count}: it has {count} storey(s)."
-        self.note = (f"The storey stiffness follows the number of storeys: T1 = {self.period_1:.3g} s and T2 = {self.period_2:.3g} s are kept."
-                     if not self.note.startswith("Building") else self.note)
+                notes.append(f"Building {b}'s contact floor moved to {count}: it has {count} storey(s).")
+                moved = True
+        self.note = " ".join(notes)
+        if moved:  # the change's own computation may have run with the floor that no longer exists
+            self.recompute()
 
     @param.depends("contact_model", watch=True)
     def _on_contact_model(self):

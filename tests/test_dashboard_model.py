@@ -62,6 +62,7 @@ def test_more_storeys_keep_the_fundamental_period_and_say_so():
     model.level_1 = 3
     model.storeys_1 = 2  # the contact floor no longer exists: it moves, and the page says so
     assert model.level_1 == 2 and "contact floor moved to 2" in model.note
+    assert model.error == "" and model.result.case.contact.levels == (2, 1)
 
 
 def test_chain_stiffness_gives_the_period():
