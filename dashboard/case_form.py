@@ -6,7 +6,6 @@ and validates, and a bad input is named as a case file would name it."""
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 from pounding.case import Case
 from pounding.errors import CaseError
@@ -170,8 +169,3 @@ def values_from_case(case: Case, data: dict, units: str) -> tuple[dict, dict]:
         "restitution": contact.restitution, "contact_model": contact.model,
     }
     return values, extra
-
-
-def record_names(folder: Path) -> list[str]:
-    """The uploaded records in ``folder``, sorted (the order simulate integrates them in)."""
-    return sorted(str(path) for path in folder.iterdir() if path.is_file())
