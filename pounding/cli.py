@@ -188,7 +188,7 @@ def _estimate(args) -> int:
     print(f"case                        {case.name} ({'stationary' if case.excitation.stationary else 'non-stationary'}, {case.excitation.duration:.4g} s)")
     print(f"gap                         {100 * case.contact.gap:{'.2f' if case.contact.gap < 1e4 else '.4g'}} cm")
     linearized = result.response
-    for line in engineering_lines(engineering_terms(case)):
+    for line in engineering_lines(engineering_terms(case), force_text):
         print(line)
     print(f"sigma relative displacement {100 * result.sigma_relative_displacement:.3f} cm   "
           f"(linearized {100 * linearized.sigma_relative_displacement:.3f} cm, plus the residual's response)")

@@ -31,8 +31,10 @@ def _spectrum_text(fitted: dict) -> str:
     return text
 
 
-def engineering_lines(terms: dict) -> list[str]:
-    """The ground motion and the storeys, from ``Estimate.to_dict()`` (its :func:`~pounding.engineering.engineering_terms`)."""
+def engineering_lines(terms: dict, force_text=None) -> list[str]:
+    """The ground motion and the storeys, from ``Estimate.to_dict()`` (its :func:`~pounding.engineering.engineering_terms`);
+    ``force_text`` prints a force [N] (default kN or MN)."""
+    force_text = force_text or _force
     motion = terms["ground_motion"]
     lines = []
     if "fitted_excitation" in terms:
@@ -52,7 +54,7 @@ def engineering_lines(terms: dict) -> list[str]:
         if storey["yield_drift"] is None:
             lines.append(f"  {where:25s} elastic, stiffness {storey['stiffness']:.4g} N/m")
         else:
-            lines.append(f"  {where:25s} yield drift {_length(storey['yield_drift'])}, yield force {_force(storey['yield_force'])}, "
+            lines.append(f"  {where:25s} yield drift {_length(storey['yield_drift'])}, yield force {force_text(storey['yield_force'])}, "
                          f"post-yield ratio {storey['post_yield_ratio']:.3g}")
     return lines
 

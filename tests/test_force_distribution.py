@@ -92,4 +92,5 @@ def test_capacity_in_kgf_is_the_same_capacity_in_newtons(capsys):
         probability = out["probability_exceeding"]
     assert main(["estimate", "section5-T2-0.4", "--capacity", "30000", "--units", "kgf-cm-s"]) == 0
     text = capsys.readouterr().out
-    assert "P(F_max > 30,000 kgf)" in text and f"{100 * probability:.1f} %" in text and " kN" not in text.split("recommended")[1].split("paper")[0]
+    assert "P(F_max > 30,000 kgf)" in text and f"{100 * probability:.1f} %" in text and " kN" not in text.split("paper")[0]
+    assert "yield force 1097 kgf" in text  # the paper's storey: 1097 kgf/cm x its 1 cm yield drift
