@@ -1,4 +1,4 @@
-"""Speed of the PSD compatible with a design spectrum (pounding.compatible_psd.compatible_spectrum).
+"""Speed of the PSD compatible with a design spectrum (pounding.hazard.compatible_psd.compatible_spectrum).
 
 - one compatible FilterBank for EN 1998-1 type 1, ground C, ag = 0.3 g, 20 s stationary; for ASCE 7-16
   (SDS = 1.0 g, SD1 = 0.6 g, TL = 8 s), 20 s under the Shinozuka-Sato envelope; and for EN 1998-1 type 2
@@ -14,9 +14,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from pounding.compatible_psd import compatible_spectrum
-from pounding.design_spectra import ASCE7Spectrum, Eurocode8Spectrum
-from pounding.excitation import ShinozukaSato
+from pounding.hazard.compatible_psd import compatible_spectrum
+from pounding.hazard.design_spectra import ASCE7Spectrum, Eurocode8Spectrum
+from pounding.hazard.excitation import ShinozukaSato
 from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
 TARGET = 0.050  # [s] one compatible bank

@@ -12,7 +12,7 @@
   and from scratch;
 - the same for the modulated (non-stationary) case;
 - ``pounding estimate section5-T2-0.4 --json`` through the command line's
-  entry point, in process (``pounding.cli.main``: argument parsing, case
+  entry point, in process (``pounding.cli.commands.main``: argument parsing, case
   load, estimate, JSON; stdout redirected), median of repeated calls after
   warm-up, beside baselines timed in the same process: the linearization
   alone and the Monte Carlo mean of the same case from 300 records (what the
@@ -31,12 +31,12 @@ import time
 import numpy as np
 
 from pounding import load_case, simulate
-from pounding.cli import main as command_line
-from pounding.estimator import estimate, force_versus_gap
-from pounding.impact_damping import impact_damping
-from pounding.linearization import linearize_pair
-from pounding.linearization.residual import residual_response
-from pounding.pair import LinearizedPair
+from pounding.cli.commands import main as command_line
+from pounding.closed_form.estimator import estimate, force_versus_gap
+from pounding.closed_form.impact_damping import impact_damping
+from pounding.closed_form.linearization import linearize_pair
+from pounding.closed_form.linearization.residual import residual_response
+from pounding.closed_form.pair import LinearizedPair
 from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
 CLI_CASE = "section5-T2-0.4"
@@ -44,7 +44,7 @@ CLI_TARGET = 5e-3  # [s] median of one in-process `pounding estimate CASE --json
 
 
 def _command_line_estimate(argv: list[str]) -> str:
-    """``pounding.cli.main(argv)`` with its stdout captured; the printed text."""
+    """``pounding.cli.commands.main(argv)`` with its stdout captured; the printed text."""
     out = io.StringIO()
     with contextlib.redirect_stdout(out):
         status = command_line(argv)
@@ -106,7 +106,7 @@ def main() -> None:
     lin = median_seconds(lambda: linearize_pair(case))
     monte_carlo = _monte_carlo_seconds(case)
     verdict = "within" if command <= CLI_TARGET else "OVER"
-    print(f"pounding {' '.join(argv)} (in process, pounding.cli.main; parse, load, estimate, JSON):")
+    print(f"pounding {' '.join(argv)} (in process, pounding.cli.commands.main; parse, load, estimate, JSON):")
     print(f"  median of 50 calls                   {1e3 * command:7.2f} ms   ({verdict} the target of {1e3 * CLI_TARGET:g} ms)")
     print(f"  baseline: the linearization alone    {1e3 * lin:7.2f} ms   (the command is {command / lin:.1f} times it)")
     print(f"  baseline: Monte Carlo, 300 records   {1e3 * monte_carlo:7.1f} ms   ({monte_carlo / command:.0f}x the command)")

@@ -18,10 +18,10 @@ import tempfile
 import numpy as np
 
 from pounding import Settings, estimate, load_case, simulate
-from pounding.case_scaling import PeakGroundAcceleration
-from pounding.force_spectrum import force_spectrum
-from pounding.fragility import fragility_curve
-from pounding.monte_carlo_study import MonteCarloPlan
+from pounding.case.scaling import PeakGroundAcceleration
+from pounding.studies.force_spectrum import force_spectrum
+from pounding.studies.fragility import fragility_curve
+from pounding.studies.monte_carlo_study import MonteCarloPlan
 from pounding.units import STANDARD_GRAVITY
 from timing import median_seconds  # noqa: E402 (this folder is on the path)
 

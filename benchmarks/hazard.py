@@ -20,9 +20,9 @@ from pathlib import Path
 
 
 from pounding import estimate, simulate
-from pounding.accelerograms import Accelerogram, write_at2
-from pounding.case import case_from_dict
-from pounding.excitation import ground_accelerations
+from pounding.hazard.accelerograms import Accelerogram, write_at2
+from pounding.case.case import case_from_dict
+from pounding.hazard.excitation import ground_accelerations
 from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
 BUILDINGS = [

@@ -1,4 +1,4 @@
-"""Speed of the spectrum fitted to a suite of records (pounding.motion_fit.fit_excitation).
+"""Speed of the spectrum fitted to a suite of records (pounding.hazard.motion_fit.fit_excitation).
 
 - one fit to 20 stationary Kanai-Tajimi records of 20 s at 0.005 s (4001 samples
   each; the strong motion's periodograms, the bins, both least-squares fits):
@@ -17,9 +17,9 @@ import math
 
 import numpy as np
 
-from pounding.accelerograms import Accelerogram
-from pounding.excitation import Excitation, KanaiTajimi, ground_accelerations
-from pounding.motion_fit import fit_excitation
+from pounding.hazard.accelerograms import Accelerogram
+from pounding.hazard.excitation import Excitation, KanaiTajimi, ground_accelerations
+from pounding.hazard.motion_fit import fit_excitation
 from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
 TARGET = 0.200  # [s] one fit to 20 records of 20 s at 0.005 s

@@ -26,7 +26,7 @@ sys.path.insert(0, str(ROOT))
 import numpy as np  # noqa: E402
 
 from pounding import Settings, load_case, simulate  # noqa: E402
-from pounding.opensees_export import export_opensees  # noqa: E402
+from pounding.export.opensees import export_opensees  # noqa: E402
 
 CASES = ("section5-T2-0.4", "section6-T2-0.4-nonstationary")
 

@@ -55,7 +55,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from pounding.presets import preset_text  # noqa: E402
-from pounding.sweeps import CHUNK_RECORDS, chunk_sums, sweep  # noqa: E402
+from pounding.studies.sweeps import CHUNK_RECORDS, chunk_sums, sweep  # noqa: E402
 
 CASE = "section5-T2-0.4"
 GAPS = [0.5, 1.0, 1.5, 2.0]  # cm

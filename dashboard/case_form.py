@@ -7,9 +7,9 @@ from __future__ import annotations
 
 import math
 
-from pounding.case import Case
+from pounding.case.case import Case
 from pounding.errors import CaseError
-from pounding.excitation import CloughPenzien
+from pounding.hazard.excitation import CloughPenzien
 from pounding.units import STANDARD_GRAVITY
 
 from dashboard.display_system import display_system
@@ -145,7 +145,7 @@ def _excitation_values(case: Case, data: dict, units: str) -> tuple[dict, dict]:
     spectrum = excitation.spectrum
     if isinstance(spectrum, CloughPenzien):
         extra |= {"spectrum": "clough-penzien", "omega_f": spectrum.omega_f, "xi_f": spectrum.xi_f}
-    from pounding.peak_factors import expected_peak_ground_acceleration
+    from pounding.random_vibration.peak_factors import expected_peak_ground_acceleration
 
     values |= {"ground_motion": "Kanai-Tajimi", "intensity": "PGA" if "pga" in table else "G0",
                "G0": u.from_si(spectrum.G0, length=2), "omega_g": spectrum.omega_g, "xi_g": spectrum.xi_g,

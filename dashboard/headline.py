@@ -52,7 +52,7 @@ def _number(value: str, what: str, css: str) -> str:
 
 def headline_html(result, units: str = "SI", capacity: float | None = None, monte_carlo=None, design_gap=None,
                   name: str = "") -> str:
-    """The headline of an :class:`~pounding.estimator.Estimate` ``result``; ``capacity`` [N] adds P(F_max > capacity);
+    """The headline of an :class:`~pounding.closed_form.estimator.Estimate` ``result``; ``capacity`` [N] adds P(F_max > capacity);
     ``monte_carlo`` a :class:`~pounding.report.MonteCarloPoint` of exactly this case, ``design_gap`` its Monte Carlo
     design gap, each when run."""
     shown = display(units)

@@ -11,8 +11,8 @@ from __future__ import annotations
 import param
 
 from pounding import defaults
-from pounding.case_excitation import GROUND_TYPES
-from pounding.contact import CONTACT_MODELS, contact_law
+from pounding.case.excitation import GROUND_TYPES
+from pounding.mechanics.contact import CONTACT_MODELS, contact_law
 
 __all__ = [
     "CODES",

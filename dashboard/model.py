@@ -2,7 +2,7 @@
 terms, and what they give.
 
 The inputs are assembled into a case file (``case_form.case_data``), in the
-unit system shown, and handed to ``pounding.case.case_from_dict``: the library
+unit system shown, and handed to ``pounding.case.case.case_from_dict``: the library
 converts units, derives and validates, and its ``CaseError`` names the field as
 a case file would. Each change is computed off the event loop, the newest only
 (``runner.Latest``): first the estimate (the headline), then everything the
@@ -24,10 +24,10 @@ from pathlib import Path
 import param
 
 from pounding import defaults
-from pounding.case import case_from_dict, load_case
+from pounding.case.case import case_from_dict, load_case
 from pounding.errors import CaseError, ConvergenceError, SimulationError
-from pounding.estimator import estimate
-from pounding.pair import LinearizedPair
+from pounding.closed_form.estimator import estimate
+from pounding.closed_form.pair import LinearizedPair
 from pounding.presets import preset_names, preset_text
 from pounding.report import compute_snapshot
 from pounding.units import UNIT_SYSTEMS
@@ -61,7 +61,7 @@ class PoundingModel(Studies):
     locals().update(excitation_params())
 
     # --- outputs (not inputs) ---
-    result = param.Parameter(None, precedence=-1, doc="pounding.estimator.Estimate of the current inputs, or None.")
+    result = param.Parameter(None, precedence=-1, doc="pounding.closed_form.estimator.Estimate of the current inputs, or None.")
     snapshot = param.Parameter(None, precedence=-1, doc="pounding.report.Snapshot of the current inputs (the plots), or None.")
     error = param.String("", precedence=-1, doc="Why there is no result (names the input).")
     note = param.String("", precedence=-1, doc="A change that moved another input, said once.")

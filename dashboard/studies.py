@@ -1,5 +1,5 @@
 """The dashboard's Monte Carlo studies: the reduced-sample study of the current
-case and its Monte Carlo design gap (``pounding.simulation.design_gap``), each
+case and its Monte Carlo design gap (``pounding.simulation.monte_carlo.design_gap``), each
 on a worker thread, their progress and results handed back to the session's
 event loop; a change of inputs cancels a running study and drops results that
 no longer hold."""
@@ -16,7 +16,7 @@ import param
 
 from pounding import defaults, simulate
 from pounding.report import DEFAULT_SEED, MonteCarloPoint
-from pounding.simulation import Cancelled, DesignGap, design_gap
+from pounding.simulation.monte_carlo import Cancelled, DesignGap, design_gap
 
 from dashboard.messages import message
 
@@ -45,7 +45,7 @@ class Studies(param.Parameterized):
     design_gap_progress = param.Integer(0, bounds=(0, 100), precedence=-1)
     design_gap_status = param.String("", precedence=-1)
     design_gap_result = param.Parameter(
-        None, precedence=-1, doc="pounding.simulation.DesignGap of the current case (it holds at any gap), or None."
+        None, precedence=-1, doc="pounding.simulation.monte_carlo.DesignGap of the current case (it holds at any gap), or None."
     )
 
     def __init__(self, **params):
@@ -176,7 +176,7 @@ class Studies(param.Parameterized):
         return result
 
     def run_design_gap(self) -> None:
-        """Start ``pounding.simulation.design_gap`` for the current case on a
+        """Start ``pounding.simulation.monte_carlo.design_gap`` for the current case on a
         worker thread: ``records`` records seeded ``seed``, for the target
         probability of no pounding of the closed-form required gap.
 

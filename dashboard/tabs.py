@@ -36,9 +36,9 @@ def distribution_plot(dashboard, snapshot, units: str, capacity: float):
 
 
 def fragility_plot(dashboard, snapshot, units: str, capacity: float):
-    from pounding.case_scaling import PeakGroundAcceleration
-    from pounding.curve_charts import fragility_chart
-    from pounding.fragility import fragility_curve
+    from pounding.case.scaling import PeakGroundAcceleration
+    from pounding.report.curve_charts import fragility_chart
+    from pounding.studies.fragility import fragility_curve
 
     reference = PeakGroundAcceleration(snapshot.case).reference
     curve = fragility_curve(snapshot.case, capacity, reference * np.linspace(0.1, 2.0, FRAGILITY_POINTS))
@@ -51,7 +51,7 @@ def fragility_plot(dashboard, snapshot, units: str, capacity: float):
 
 
 def hazard_plot(dashboard, snapshot, units: str, capacity: float):
-    from pounding.engineering import ground_motion_terms
+    from pounding.case.engineering import ground_motion_terms
     from pounding.report.hazard_section import hazard_figure
 
     figure = hazard_figure(snapshot.case, snapshot.seed)

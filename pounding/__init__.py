@@ -5,7 +5,7 @@ Reference: S. Rahimi and M. Soltani (2016), "Expected extreme value of
 pounding force between two adjacent buildings", Structural Engineering and
 Mechanics.
 
-The public names are imported lazily, so that ``import pounding.cli`` (and
+The public names are imported lazily, so that ``import pounding.cli.commands`` (and
 ``pounding cases``) stays light.
 """
 
@@ -14,32 +14,32 @@ from importlib import import_module
 __version__ = "0.1.0"
 
 _EXPORTS = {
-    "Case": "case",
-    "load_case": "case",
-    "preset_names": "case",
-    "Contact": "contact",
+    "Case": "case.case",
+    "load_case": "case.case",
+    "preset_names": "case.case",
+    "Contact": "mechanics.contact",
     "CaseError": "errors",
     "ConvergenceError": "errors",
     "SimulationError": "errors",
-    "CloughPenzien": "excitation",
-    "Excitation": "excitation",
-    "KanaiTajimi": "excitation",
-    "ShinozukaSato": "excitation",
-    "Settings": "simulation",
-    "SimulationResult": "simulation",
-    "TimeHistory": "simulation",
-    "DesignGap": "simulation",
-    "design_gap": "simulation",
-    "integrate": "simulation",
-    "simulate": "simulation",
-    "simulate_record": "simulation",
-    "LinearizedPair": "pair",
-    "estimate": "estimator",
-    "force_versus_gap": "estimator",
-    "BoucWen": "structures",
-    "Building": "structures",
-    "Storey": "structures",
-    "sweep": "sweeps",
+    "CloughPenzien": "hazard.excitation",
+    "Excitation": "hazard.excitation",
+    "KanaiTajimi": "hazard.excitation",
+    "ShinozukaSato": "hazard.excitation",
+    "Settings": "simulation.monte_carlo",
+    "SimulationResult": "simulation.monte_carlo",
+    "TimeHistory": "simulation.monte_carlo",
+    "DesignGap": "simulation.monte_carlo",
+    "design_gap": "simulation.monte_carlo",
+    "integrate": "simulation.monte_carlo",
+    "simulate": "simulation.monte_carlo",
+    "simulate_record": "simulation.monte_carlo",
+    "LinearizedPair": "closed_form.pair",
+    "estimate": "closed_form.estimator",
+    "force_versus_gap": "closed_form.estimator",
+    "BoucWen": "mechanics.structures",
+    "Building": "mechanics.structures",
+    "Storey": "mechanics.structures",
+    "sweep": "studies.sweeps",
 }
 
 __all__ = sorted(_EXPORTS)

@@ -30,6 +30,7 @@ __all__ = [
     "SPECTRUM_MIN_RECORDS",
     "DESIGN_GAP_RECORDS",
     "INTEGRATOR_TOLERANCE",
+    "DISPLACEMENT_LIMIT",
     "MICHAELOV_N1",
     "MICHAELOV_N1_RANGE",
     "RECORDS",
@@ -58,6 +59,9 @@ MICHAELOV_N1_RANGE = (0.5, 20.0)
 """Allowed n1: below 0.5 the moments weigh the long quiet tail of the record, above 20 only its peak instant."""
 INTEGRATOR_TOLERANCE = 1e-6
 """Relative tolerance of the time-history integrator's local error per step [-]."""
+DISPLACEMENT_LIMIT = 10.0
+"""A floor displacement beyond this [m] is a runaway response: a time history stops on it (``Settings``), and the
+closed form refuses where 3 sigma passes it."""
 DESIGN_SYNTHESIS_FACTOR = 4
 """synthesis_factor of the records of a design-spectrum case: at 1 a 20 s record carries the PSD on lines 0.31 rad/s
 apart, as wide as a 5 % oscillator's band at 2 s, and the records' mean spectrum ripples by 5 % (docs/hazard.md)."""

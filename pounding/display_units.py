@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .units import KGF_CM_S, SI, UNIT_SYSTEMS, UnitSystem
+from pounding.units import KGF_CM_S, SI, UNIT_SYSTEMS, UnitSystem
 
 # --- display units -------------------------------------------------------------
 
@@ -68,7 +68,7 @@ DISPLAY_UNITS = {
 def display(units: str) -> Display:
     """The :class:`Display` of a unit system's name ("SI" or "kgf-cm-s")."""
     if units not in UNIT_SYSTEMS:
-        from .errors import CaseError
+        from pounding.errors import CaseError
 
         raise CaseError("units", f"unknown unit system {units!r}; allowed: {', '.join(UNIT_SYSTEMS)}")
     return DISPLAY_UNITS[units]

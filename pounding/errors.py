@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 import numbers
 
-from . import defaults
+from pounding import defaults
 
 __all__ = [
     "CaseError",

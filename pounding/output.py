@@ -27,7 +27,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from .errors import CaseError
+from pounding.errors import CaseError
 
 __all__ = ["check_folder", "check_target", "describe_os_error", "release_stdout", "remove_stale", "write_atomic"]
 

@@ -72,7 +72,7 @@ UNIT_SYSTEMS = {SI.name: SI, KGF_CM_S.name: KGF_CM_S}
 
 def unit_system(name: str) -> UnitSystem:
     """The unit system called ``name`` ("SI" or "kgf-cm-s")."""
-    from .errors import CaseError, quote
+    from pounding.errors import CaseError, quote
 
     if isinstance(name, str) and name in UNIT_SYSTEMS:
         return UNIT_SYSTEMS[name]

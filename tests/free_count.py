@@ -1,12 +1,12 @@
 """The gap-aware force counted on the free motion (without the impacts'
 damping of the motion between them), composed from the public building
-blocks of :mod:`pounding.gap_aware`: the comparison the estimator no longer
+blocks of :mod:`pounding.closed_form.gap_aware`: the comparison the estimator no longer
 offers as an option."""
 
 import numpy as np
 
-from pounding.gap_aware import Crossings, expected_force_maximum
-from pounding.impact_damping import DampedMotion
+from pounding.closed_form.gap_aware import Crossings, expected_force_maximum
+from pounding.closed_form.impact_damping import DampedMotion
 
 
 def free_force(case, crossings: Crossings, gaps, points: int = 121) -> np.ndarray:

@@ -1,4 +1,4 @@
-"""Reading and writing recorded accelerograms (pounding.accelerograms): files written here by hand."""
+"""Reading and writing recorded accelerograms (pounding.hazard.accelerograms): files written here by hand."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from pounding import defaults
-from pounding.accelerograms import (
+from pounding.hazard.accelerograms import (
     G,
     Accelerogram,
     expand_records,
@@ -159,7 +159,7 @@ def test_the_samples_limit_is_checked_from_the_header(tmp_path, monkeypatch):
 
 
 def test_the_file_size_limit(tmp_path, monkeypatch):
-    import pounding.accelerograms as module
+    import pounding.hazard.accelerograms as module
 
     monkeypatch.setattr(module, "MAX_RECORD_FILE_BYTES", 100)
     path = _write(tmp_path, "a.csv", "t,a\n" + "".join(f"{k * 0.01:.2f},0.1\n" for k in range(40)))

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from pounding import CaseError, load_case, preset_names, simulate
-from pounding.case import case_from_dict
+from pounding.case.case import case_from_dict
 from pounding.units import KGF_CM_S, STANDARD_GRAVITY
 
 import tomllib

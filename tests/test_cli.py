@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from pounding import load_case, preset_names, simulate
-from pounding.estimator import estimate
-from pounding.simulation import design_gap
+from pounding.closed_form.estimator import estimate
+from pounding.simulation.monte_carlo import design_gap
 
 
 def run(*args, **kwargs):
@@ -66,7 +66,7 @@ def test_validate_prints_the_papers_tables_beside_both_estimators_and_its_assump
     """Tables 1, 2, 5, 6 under both readings of the excitation: the paper's two
     columns as printed in it, this project's Monte Carlo and both estimators,
     each the library's number, then every assumption and what the readings gave."""
-    from pounding.validation import ASSUMPTIONS, PAPER_TABLES, READINGS, READINGS_MEASURED
+    from pounding.studies.paper_tables import ASSUMPTIONS, PAPER_TABLES, READINGS, READINGS_MEASURED
 
     out = run("validate", "--records", "2", "--seed", "4")
     assert out.returncode == 0, out.stderr
@@ -156,7 +156,7 @@ def test_bad_case_file_names_the_field(tmp_path):
 
 def test_command_line_imports_no_plotting_library():
     code = (
-        "import sys; from pounding.cli import main; main(['simulate', 'section5-T2-0.4', '--records', '2', '--json']);"
+        "import sys; from pounding.cli.commands import main; main(['simulate', 'section5-T2-0.4', '--records', '2', '--json']);"
         "heavy = [m for m in ('panel', 'holoviews', 'bokeh', 'matplotlib') if m in sys.modules];"
         "print('HEAVY', heavy, file=sys.stderr)"
     )
@@ -216,14 +216,14 @@ def test_help_has_examples():
 
 def test_a_case_the_methods_cannot_compute_fails_in_one_line(monkeypatch, capsys):
     """A linearization that does not converge (here forced) ends the command with one line and exit 1."""
-    import pounding.estimator
-    from pounding.cli import main
+    import pounding.closed_form.estimator
+    from pounding.cli.commands import main
     from pounding.errors import ConvergenceError
 
     def fails(*_args, **_kwargs):
         raise ConvergenceError("building 2, storey 1: the linearization did not converge (last iterate ...)")
 
-    monkeypatch.setattr(pounding.estimator, "estimate", fails)
+    monkeypatch.setattr(pounding.closed_form.estimator, "estimate", fails)
     assert main(["estimate", "section5-T2-0.4"]) == 1
     err = capsys.readouterr().err.strip().splitlines()
     assert err == ["pounding estimate: failed: building 2, storey 1: the linearization did not converge (last iterate ...)"]

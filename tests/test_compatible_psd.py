@@ -7,10 +7,10 @@ import numpy as np
 import pyrotd
 import pytest
 
-from pounding.compatible_psd import compatible_spectrum, initial_psd, random_vibration_spectrum
-from pounding.design_spectra import ASCE7Spectrum, Eurocode8Spectrum, TabulatedSpectrum
+from pounding.hazard.compatible_psd import compatible_spectrum, initial_psd, random_vibration_spectrum
+from pounding.hazard.design_spectra import ASCE7Spectrum, Eurocode8Spectrum, TabulatedSpectrum
 from pounding.errors import CaseError
-from pounding.excitation import Excitation, ShinozukaSato, ground_accelerations
+from pounding.hazard.excitation import Excitation, ShinozukaSato, ground_accelerations
 
 G = 9.80665
 PERIODS = np.geomspace(0.2, 2.0, 15)

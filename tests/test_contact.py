@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from pounding import BoucWen, Building, Case, Contact, Excitation, KanaiTajimi, Settings, Storey, integrate
-from pounding.contact import contact_force, hertz_peak_penetration, jankowski_damping_ratio
+from pounding.mechanics.contact import contact_force, hertz_peak_penetration, jankowski_damping_ratio
 
 M1, M2 = 2.0e4, 3.0e4
 REDUCED_MASS = M1 * M2 / (M1 + M2)
@@ -109,7 +109,7 @@ def test_peak_force_ratio_solves_the_dimensionless_impact(restitution):
     F / F_H = x^1.5 + 2 xi / sqrt(5/4) x^(1/4) x'."""
     from scipy.integrate import solve_ivp
 
-    from pounding.contact import peak_force_ratio
+    from pounding.mechanics.contact import peak_force_ratio
 
     xi = jankowski_damping_ratio(restitution)
 
@@ -127,7 +127,7 @@ def test_peak_force_ratio_solves_the_dimensionless_impact(restitution):
 @pytest.mark.parametrize("velocity", [0.05, 0.5])
 @pytest.mark.parametrize("model, restitution", [("jankowski", 0.65), ("jankowski", 0.9), ("hertzdamp", 0.6), ("linear", 0.7)])
 def test_impact_peak_force_matches_a_simulated_impact(model, velocity, restitution):
-    from pounding.contact import impact_peak_force
+    from pounding.mechanics.contact import impact_peak_force
 
     stiffness = BETA if model != "linear" else 5e7
     history, _ = single_impact(restitution, velocity, model, stiffness=stiffness)
@@ -143,7 +143,7 @@ def test_impact_against_a_constant_force_matches_scipy(model, restitution, phi):
     ratio, with f0 = phi F_H(v)."""
     from scipy.integrate import solve_ivp
 
-    from pounding.contact import impact_peak_force, undamped_peak_force
+    from pounding.mechanics.contact import impact_peak_force, undamped_peak_force
 
     stiffness = BETA if model != "linear" else 5e7
     contact = Contact(gap=0.0, stiffness=stiffness, restitution=restitution, model=model)
@@ -170,13 +170,13 @@ def test_impact_against_a_constant_force_matches_scipy(model, restitution, phi):
 
 @pytest.mark.parametrize("model, restitution", [("jankowski", 0.65), ("hertzdamp", 0.6), ("linear", 0.7)])
 def test_no_opposing_force_is_the_free_impact(model, restitution):
-    from pounding.contact import opposed_peak_force_ratio, peak_force_ratio
+    from pounding.mechanics.contact import opposed_peak_force_ratio, peak_force_ratio
 
     assert opposed_peak_force_ratio(model, restitution, 0.0) == pytest.approx(peak_force_ratio(model, restitution), rel=1e-4)
 
 
 def test_opposing_force_is_validated():
-    from pounding.contact import impact_peak_force
+    from pounding.mechanics.contact import impact_peak_force
     from pounding.errors import CaseError
 
     with pytest.raises(CaseError, match="opposing_force"):
@@ -189,7 +189,7 @@ def test_restoring_forces_brake_an_impact_of_two_buildings():
     m (k1 x1 / m1 - k2 x2 / m2) on the relative motion. The production
     integrator's peak force matches the impact against that constant force
     and is clearly below the free masses' one."""
-    from pounding.contact import impact_peak_force
+    from pounding.mechanics.contact import impact_peak_force
 
     def building(mass, period):
         return Building((Storey(mass, mass * (2 * np.pi / period) ** 2, BoucWen(alpha=1.0)),), damping_ratio=0.0)
@@ -216,7 +216,7 @@ def test_single_impact_solver_converges_to_an_independent_one(model, restitution
     from scipy.integrate import solve_ivp
     from scipy.optimize import minimize_scalar
 
-    from pounding.integrator import single_impact_peak
+    from pounding.mechanics.integrator import single_impact_peak
 
     contact = Contact(gap=0.0, stiffness=1.0, restitution=restitution, model=model)
     code, xi = contact.model_code, contact.damping_ratio()

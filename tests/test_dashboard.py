@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 from pounding import estimate, load_case, simulate
-from pounding.accelerograms import Accelerogram, write_at2
-from pounding.case import case_from_dict
+from pounding.hazard.accelerograms import Accelerogram, write_at2
+from pounding.case.case import case_from_dict
 from pounding.display_units import display
-from pounding.excitation import ground_accelerations
+from pounding.hazard.excitation import ground_accelerations
 from pounding.report import MonteCarloPoint, monte_carlo_check
 from pounding.presets import preset_text
 from tests.browser import CANVAS_COUNT_JS, LOAD_TIMEOUT, UPDATE_TIMEOUT

@@ -12,12 +12,12 @@ import numpy as np
 import pytest
 
 from pounding import estimate, load_case
-from pounding.accelerograms import Accelerogram, write_at2
-from pounding.case import case_from_dict
-from pounding.excitation import ground_accelerations
+from pounding.hazard.accelerograms import Accelerogram, write_at2
+from pounding.case.case import case_from_dict
+from pounding.hazard.excitation import ground_accelerations
 from pounding.report import monte_carlo_check
 from pounding.presets import preset_names, preset_text
-from pounding.simulation import Cancelled, design_gap
+from pounding.simulation.monte_carlo import Cancelled, design_gap
 from pounding.units import STANDARD_GRAVITY
 
 from dashboard.case_form import chain_stiffness
@@ -204,7 +204,7 @@ def test_headline_gives_the_answer_and_drops_advice_once_followed():
     assert advice, "the preset's gap for 95 % carries the design-gap advice"
     page = headline_html(result, "SI")
     assert "Use the Monte Carlo design gap" in page and "pounding simulate" not in page
-    from pounding.simulation import DesignGap
+    from pounding.simulation.monte_carlo import DesignGap
 
     done = DesignGap(gap=0.2, upper_bound=0.25, target_probability=0.95, peaks=np.linspace(0.1, 0.3, 50), seed=4)
     followed = headline_html(result, "SI", design_gap=done)

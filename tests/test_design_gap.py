@@ -11,8 +11,8 @@ from scipy.stats import binom
 
 from pounding import load_case, simulate
 from pounding.errors import CaseError
-from pounding.excitation import ground_accelerations
-from pounding.simulation import design_gap, integrate, records_for_bound
+from pounding.hazard.excitation import ground_accelerations
+from pounding.simulation.monte_carlo import design_gap, integrate, records_for_bound
 
 from .test_cli import run
 

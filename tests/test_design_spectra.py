@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from pounding.design_spectra import ASCE7Spectrum, Eurocode8Spectrum, TabulatedSpectrum
+from pounding.hazard.design_spectra import ASCE7Spectrum, Eurocode8Spectrum, TabulatedSpectrum
 from pounding.errors import CaseError
 
 G = 9.80665

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from pounding.regimes import accuracy_data
+from pounding.closed_form.regimes import accuracy_data
 
 ROOT = Path(__file__).resolve().parent.parent
 README = (ROOT / "README.md").read_text()
@@ -87,9 +87,9 @@ def test_the_readme_hazard_forms_load(tmp_path):
     put into the Section 5 case as written, load (the recorded motions from two files written here)."""
     import tomllib
 
-    from pounding.accelerograms import Accelerogram, write_at2, write_csv
-    from pounding.case import load_case
-    from pounding.excitation import ground_accelerations
+    from pounding.hazard.accelerograms import Accelerogram, write_at2, write_csv
+    from pounding.case.case import load_case
+    from pounding.hazard.excitation import ground_accelerations
     from pounding.presets import preset_text
 
     section = README.split("### The hazard and the storeys as an engineer gives them")[1].split("\n## ")[0]

@@ -10,12 +10,12 @@ from scipy.integrate import quad
 import tomllib
 
 from pounding import CaseError, estimate, simulate
-from pounding.case import case_from_dict
-from pounding.filter_bank import FilterBank
-from pounding.pair import LinearizedPair
+from pounding.case.case import case_from_dict
+from pounding.hazard.filter_bank import FilterBank
+from pounding.closed_form.pair import LinearizedPair
 from pounding.presets import preset_text
-from pounding.response import response_frequency
-from pounding.structures import BoucWen
+from pounding.closed_form.response import response_frequency
+from pounding.mechanics.structures import BoucWen
 
 PRESET = "section5-T2-0.4"  # kgf-cm-s, beta = 2, gamma = -1 [1/cm], alpha = 0.05
 

@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 
 from pounding import CaseError, load_case, simulate_record
-from pounding.crossing_kernels import approach_intensity
-from pounding.estimator import estimate, force_versus_gap
-from pounding.linearization import linearize_pair
-from pounding.pair import LinearizedPair
-from pounding.peaks import davenport_peak_factor
+from pounding.random_vibration.crossing_kernels import approach_intensity
+from pounding.closed_form.estimator import estimate, force_versus_gap
+from pounding.closed_form.linearization import linearize_pair
+from pounding.closed_form.pair import LinearizedPair
+from pounding.random_vibration.peaks import davenport_peak_factor
 from tests.free_count import free_force
 
 
@@ -109,8 +109,8 @@ def test_paper_exact_variance_option_is_the_time_varying_covariance():
     buildings keep their stationary linearization), not Eq. 28's A^2 sigma_inf^2."""
     from scipy.integrate import solve_ivp
 
-    from pounding.linearization import pair_state_space
-    from pounding.peaks import equivalent_stationary
+    from pounding.closed_form.linearization import pair_state_space
+    from pounding.random_vibration.peaks import equivalent_stationary
 
     case = load_case("section5-T2-0.4-nonstationary")
     linearized = linearize_pair(case)
@@ -194,7 +194,7 @@ def test_every_number_is_finite_and_in_range_over_the_claimed_ranges_and_beyond(
     test_estimator_accuracy.py), but at most once, then falls: a rise and a
     fall and a rise again would be the model's wiggle, not physics. The
     impacts only take energy out: never above the free count."""
-    from pounding.validation import random_cases
+    from pounding.studies.paper_tables import random_cases
 
     for case in random_cases(1):
         result = estimate(case)
@@ -223,7 +223,7 @@ def test_every_number_is_finite_and_in_range_over_the_claimed_ranges_and_beyond(
 def test_no_relative_motion_is_named_not_divided_by():
     """Identical buildings never approach each other under one ground motion, and
     without ground motion nothing moves: both are named, not a ZeroDivisionError."""
-    from pounding.validation import varied_case
+    from pounding.studies.paper_tables import varied_case
 
     base = load_case("section5-T2-0.4")
     for twins in (
@@ -245,7 +245,7 @@ def test_every_warning_and_accuracy_statement_is_short():
     a yielding pair under a Clough-Penzien spectrum; between them every kind
     of warning is met."""
     from pounding import preset_names
-    from pounding.excitation import CloughPenzien
+    from pounding.hazard.excitation import CloughPenzien
 
     kinds = {"The relative motion is narrow-band", "Storeys near elastic-perfectly plastic", "The gap lies between",
              "Pounding is rare at this gap", "The gap for 95 %", "A building yields and the spectrum"}

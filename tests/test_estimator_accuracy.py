@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 from pounding import load_case, simulate
-from pounding.estimator import estimate
-from pounding.regimes import MODERATE_GAP, MOVING_TOGETHER, NARROW_BAND_LIMIT, RESIDUAL_SHARE_LIMIT, accuracy_data
-from pounding.simulation import design_gap
-from pounding.validation import accuracy, mdof_case, random_case, varied_case
+from pounding.closed_form.estimator import estimate
+from pounding.closed_form.regimes import MODERATE_GAP, MOVING_TOGETHER, NARROW_BAND_LIMIT, RESIDUAL_SHARE_LIMIT, accuracy_data
+from pounding.simulation.monte_carlo import design_gap
+from pounding.studies.paper_tables import accuracy, mdof_case, random_case, varied_case
 from tests.free_count import free_force
 
 RECORDS = 200
@@ -239,7 +239,7 @@ def test_peak_force_given_the_velocity_includes_the_buildings_forces():
     simulated largest force against the law's peak for the record's largest
     approach velocity: with the estimator's opposing force the two agree on
     average; for free masses the law overstates the force."""
-    from pounding.contact import impact_peak_force
+    from pounding.mechanics.contact import impact_peak_force
 
     case = varied_case(load_case("section5-T2-0.4"), elastic=True, gap=0.06)
     result = estimate(case)
@@ -253,7 +253,7 @@ def test_peak_force_given_the_velocity_includes_the_buildings_forces():
 
 
 def _clough_penzien(case):
-    from pounding.excitation import CloughPenzien
+    from pounding.hazard.excitation import CloughPenzien
 
     s = case.excitation.spectrum
     spectrum = CloughPenzien(s.G0, s.omega_g, s.xi_g, omega_f=2.0, xi_f=0.6)

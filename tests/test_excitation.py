@@ -7,7 +7,7 @@ import pytest
 from scipy import integrate, signal
 
 from pounding import CloughPenzien, Excitation, KanaiTajimi, ShinozukaSato
-from pounding.excitation import ground_acceleration, ground_accelerations, record_rng
+from pounding.hazard.excitation import ground_acceleration, ground_accelerations, record_rng
 
 from .conftest import KANAI_TAJIMI_SI
 
@@ -105,7 +105,7 @@ def test_a_larger_synthesis_factor_keeps_the_lowest_frequencies(factor):
     int S(w) (sin(w T / 2) / (w T / 2))^2 dw, most of it from w < 2 pi / T.
     Records periodic over about T (factor 1) lose that band; with factor 8
     the synthesis grid is 8 times finer and the variance is kept."""
-    from pounding.excitation import _one_sided_weights
+    from pounding.hazard.excitation import _one_sided_weights
 
     excitation = Excitation(KANAI_TAJIMI_SI, 20.0, synthesis_factor=factor)
     duration = (excitation.n_samples - 1) * excitation.time_step

@@ -15,12 +15,12 @@ import numpy as np
 import pytest
 
 from pounding import load_case
-from pounding.cli import main
+from pounding.cli.commands import main
 from pounding.errors import CaseError, ConvergenceError
-from pounding.estimator import estimate, force_versus_gap
-from pounding.pair import LinearizedPair
+from pounding.closed_form.estimator import estimate, force_versus_gap
+from pounding.closed_form.pair import LinearizedPair
 from pounding.presets import preset_names, preset_text
-from pounding.regimes import CUTOFF_SHARE_LIMIT
+from pounding.closed_form.regimes import CUTOFF_SHARE_LIMIT
 
 PRESET = "section5-T2-0.4"
 
@@ -123,7 +123,7 @@ def test_simulate_prints_its_monte_carlo_whatever_the_closed_form_raises(tmp_pat
     def failing(*args, **kwargs):
         raise error
 
-    monkeypatch.setattr("pounding.estimator.estimate", failing)
+    monkeypatch.setattr("pounding.closed_form.estimator.estimate", failing)
     path = variant(tmp_path, duration=4.0)
     status, out, err = run(capsys, "simulate", path, "--records", "2")
     assert status == 0 and err == ""

@@ -5,14 +5,14 @@ import numpy as np
 import pytest
 
 from pounding import estimate, load_case, simulate
-from pounding.cli import main
-from pounding.monte_carlo_result import quantile_interval, wilson_interval
+from pounding.cli.commands import main
+from pounding.simulation.result import quantile_interval, wilson_interval
 
 
 @pytest.fixture(scope="module")
 def frequent_grid_errors():
     """Closed-form fractile / 500 records' fractile - 1 on every frequent-pounding case of the accuracy grid."""
-    from pounding.validation import accuracy_cases
+    from pounding.studies.paper_tables import accuracy_cases
 
     errors = {}
     for case in accuracy_cases():

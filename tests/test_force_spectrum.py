@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 
 from pounding import load_case, simulate
-from pounding.case_scaling import with_fundamental_periods
-from pounding.cli import main
-from pounding.force_spectrum import force_spectrum
-from pounding.monte_carlo_study import MonteCarloPlan
-from pounding.validation import mdof_case
+from pounding.case.scaling import with_fundamental_periods
+from pounding.cli.commands import main
+from pounding.studies.force_spectrum import force_spectrum
+from pounding.studies.monte_carlo_study import MonteCarloPlan
+from pounding.studies.paper_tables import mdof_case
 
 SECTION5 = "section5-T2-0.4"
 

@@ -10,14 +10,14 @@ import numpy as np
 import pytest
 
 from pounding import load_case, simulate
-from pounding.accelerograms import Accelerogram, write_at2
-from pounding.case_scaling import PeakGroundAcceleration
-from pounding.cli import main
-from pounding.excitation import ground_accelerations
-from pounding.fragility import fit_lognormal, fragility_curve
-from pounding.monte_carlo_study import MonteCarloPlan
-from pounding.motion_fit import fit_excitation
-from pounding.peak_factors import expected_peak_ground_acceleration
+from pounding.hazard.accelerograms import Accelerogram, write_at2
+from pounding.case.scaling import PeakGroundAcceleration
+from pounding.cli.commands import main
+from pounding.hazard.excitation import ground_accelerations
+from pounding.studies.fragility import fit_lognormal, fragility_curve
+from pounding.studies.monte_carlo_study import MonteCarloPlan
+from pounding.hazard.motion_fit import fit_excitation
+from pounding.random_vibration.peak_factors import expected_peak_ground_acceleration
 from pounding.presets import preset_text
 from pounding.units import STANDARD_GRAVITY as G
 
@@ -72,7 +72,7 @@ def test_a_design_spectrum_is_scaled_through_its_filter_bank():
         """) + text[end:]
     import tomllib
 
-    from pounding.case import case_from_dict
+    from pounding.case.case import case_from_dict
 
     case = case_from_dict(tomllib.loads(case_text))
     scaled = PeakGroundAcceleration(case).case_at(0.4 * G)

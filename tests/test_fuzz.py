@@ -15,7 +15,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from pounding.cli import main
+from pounding.cli.commands import main
 from pounding.presets import preset_text
 
 PRESETS = ("section5-T2-0.4", "section5-T2-0.8-nonstationary", "section6-T2-0.4", "section6-T2-0.6-nonstationary-G0x4pi2")

@@ -1,4 +1,4 @@
-"""The impacts' damping of the relative motion (pounding.impact_damping):
+"""The impacts' damping of the relative motion (pounding.closed_form.impact_damping):
 each piece against an independent route, and the fixed point against its
 definition."""
 
@@ -13,13 +13,13 @@ from scipy.integrate import quad
 from scipy.linalg import expm
 
 from pounding import load_case
-from pounding.estimator import estimate
-from pounding.gap_aware import gap_for_probability
-from pounding.impact_damping import impact_damping
-from pounding.pair import LinearizedPair
-from pounding.response import contact_output_matrix
-from pounding.structures import BoucWen
-from pounding.validation import mdof_case, varied_case
+from pounding.closed_form.estimator import estimate
+from pounding.closed_form.gap_aware import gap_for_probability
+from pounding.closed_form.impact_damping import impact_damping
+from pounding.closed_form.pair import LinearizedPair
+from pounding.closed_form.response import contact_output_matrix
+from pounding.mechanics.structures import BoucWen
+from pounding.studies.paper_tables import mdof_case, varied_case
 from tests.free_count import free_force
 
 CASES = {

@@ -31,11 +31,11 @@ from pounding import (
     simulate_record,
 )
 from pounding import defaults
-from pounding.case import as_case, case_from_dict
-from pounding.cli import main
+from pounding.case.case import as_case, case_from_dict
+from pounding.cli.commands import main
 from pounding.errors import check_probability
 from pounding.presets import preset_text
-from pounding.sweeps.spec import normalized_vary
+from pounding.studies.sweeps.spec import normalized_vary
 
 PRESET = "section5-T2-0.4"  # kgf-cm-s
 BASE = tomllib.loads(preset_text(PRESET))

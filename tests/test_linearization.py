@@ -11,9 +11,9 @@ from scipy.special import erf
 
 import pounding
 from pounding.errors import ConvergenceError
-from pounding.filter_bank import FilterBank
-from pounding.excitation import CloughPenzien, KanaiTajimi
-from pounding.linearization import (
+from pounding.hazard.filter_bank import FilterBank
+from pounding.hazard.excitation import CloughPenzien, KanaiTajimi
+from pounding.closed_form.linearization import (
     LinearizedBuilding,
     building_state_space,
     equivalent_coefficients,
@@ -24,7 +24,7 @@ from pounding.linearization import (
     state_space,
     wen_expectations,
 )
-from pounding.structures import BoucWen, Building, Storey
+from pounding.mechanics.structures import BoucWen, Building, Storey
 
 
 def _reference_expectations(sigma_u, sigma_z, rho, n):
@@ -301,7 +301,7 @@ def test_equivalent_storey_force_integrates_the_linear_law_along_a_drift_history
     between uneven samples: q = alpha k u + (1 - alpha) k z at every sample."""
     from scipy.integrate import solve_ivp
 
-    from pounding.linearization import equivalent_storey_force
+    from pounding.closed_form.linearization import equivalent_storey_force
 
     case = pounding.load_case("section5-T2-0.4")
     building = linearize_pair(case)[0]

@@ -1,4 +1,4 @@
-"""The spectrum fitted to a suite of records (pounding.motion_fit): Arias intensity and significant duration
+"""The spectrum fitted to a suite of records (pounding.hazard.motion_fit): Arias intensity and significant duration
 on analytic records; the fit on suites synthesized by pounding's own generator from known spectra."""
 
 from __future__ import annotations
@@ -9,10 +9,10 @@ import math
 import numpy as np
 import pytest
 
-from pounding.accelerograms import G, Accelerogram
+from pounding.hazard.accelerograms import G, Accelerogram
 from pounding.errors import CaseError
-from pounding.excitation import CloughPenzien, Excitation, KanaiTajimi, ShinozukaSato, ground_accelerations
-from pounding.motion_fit import TAPER, arias_intensity, fit_excitation, significant_duration
+from pounding.hazard.excitation import CloughPenzien, Excitation, KanaiTajimi, ShinozukaSato, ground_accelerations
+from pounding.hazard.motion_fit import TAPER, arias_intensity, fit_excitation, significant_duration
 
 
 def _suite(spectrum, records: int = 50, envelope=None, seed: int = 1) -> tuple[Excitation, list[Accelerogram]]:

@@ -29,7 +29,7 @@ WIDGET_MODEL = re.compile(r'\\?"name\\?":\\?"(Slider|Spinner|Select)\\?"')
 CHECKS = {
     "1_impact_physics": """
 import json
-from pounding.contact import Contact, impact_peak_force, jankowski_damping_ratio
+from pounding.mechanics.contact import Contact, impact_peak_force, jankowski_damping_ratio
 from pounding.display_units import display
 before = readout.object
 lesson.param.update(restitution=0.5, velocity=0.7)
@@ -41,7 +41,7 @@ print(json.dumps({"before": before, "after": readout.object,
 import json
 from pounding import BoucWen, Storey
 from pounding.display_units import display
-from pounding.structures import hysteresis
+from pounding.mechanics.structures import hysteresis
 before = readout.object
 lesson.param.update(yield_drift=2.0, beta_share=1.0)
 library_storey = Storey(4e4, 1.1e6, BoucWen.from_yield_drift(0.02, 0.05, n=1.0, beta_share=1.0))

@@ -22,7 +22,7 @@ from pathlib import Path
 
 import pytest
 
-from pounding.cli import main
+from pounding.cli.commands import main
 from pounding.output import remove_stale
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -9,10 +9,10 @@ import functools
 import numpy as np
 import pytest
 
-import pounding.pair as pair_module
+import pounding.closed_form.pair as pair_module
 from pounding import load_case
-from pounding.estimator import estimate
-from pounding.pair import LinearizedPair
+from pounding.closed_form.estimator import estimate
+from pounding.closed_form.pair import LinearizedPair
 
 EXPENSIVE = ("linearize_pair", "pair_state_space", "residual_response", "time_varying_covariance",
              "floor_response_and_receptance", "relative_displacement_psd", "impact_damping")

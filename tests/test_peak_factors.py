@@ -1,4 +1,4 @@
-"""Expected peaks (pounding.peak_factors) against Monte Carlo records and Davenport's asymptote."""
+"""Expected peaks (pounding.random_vibration.peak_factors) against Monte Carlo records and Davenport's asymptote."""
 
 import math
 
@@ -7,14 +7,14 @@ import pytest
 
 from pounding import load_case
 from pounding.errors import CaseError
-from pounding.excitation import CloughPenzien, Excitation, ShinozukaSato, ground_accelerations
-from pounding.peak_factors import (
+from pounding.hazard.excitation import CloughPenzien, Excitation, ShinozukaSato, ground_accelerations
+from pounding.random_vibration.peak_factors import (
     expected_peak,
     expected_peak_ground_acceleration,
     intensity_for_peak_ground_acceleration,
     rms_acceleration,
 )
-from pounding.peaks import davenport_peak_factor
+from pounding.random_vibration.peaks import davenport_peak_factor
 
 RECORDS = 200
 

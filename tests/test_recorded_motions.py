@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 
 from pounding import CaseError, load_case, simulate
-from pounding.accelerograms import Accelerogram, read_accelerogram, write_at2
-from pounding.cli import main
-from pounding.excitation import ground_accelerations
-from pounding.peak_factors import expected_peak_ground_acceleration
+from pounding.hazard.accelerograms import Accelerogram, read_accelerogram, write_at2
+from pounding.cli.commands import main
+from pounding.hazard.excitation import ground_accelerations
+from pounding.random_vibration.peak_factors import expected_peak_ground_acceleration
 from pounding.presets import preset_text
 from pounding.units import STANDARD_GRAVITY
 

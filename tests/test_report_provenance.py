@@ -11,9 +11,9 @@ import tomllib
 import pytest
 
 from pounding import CaseError, load_case
-from pounding.case import case_from_dict
-from pounding.cli import main
-from pounding.engineering import ground_motion_terms
+from pounding.case.case import case_from_dict
+from pounding.cli.commands import main
+from pounding.case.engineering import ground_motion_terms
 from pounding.presets import preset_names, preset_text
 from pounding.report import CaseChange, case_changes, case_provenance, compute_snapshot, write_report
 from pounding.report.case_keys import DEFAULTS, key_label

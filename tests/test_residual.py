@@ -1,4 +1,4 @@
-"""The linearization residual as an input (pounding.linearization.residual):
+"""The linearization residual as an input (pounding.closed_form.linearization.residual):
 each step against an independent computation."""
 
 import dataclasses
@@ -9,15 +9,15 @@ import pytest
 from scipy.linalg import expm
 
 from pounding import load_case
-from pounding.linearization.residual import (
+from pounding.closed_form.linearization.residual import (
     residual_chaos,
     residual_correlation,
     residual_response,
 )
-from pounding.pair import LinearizedPair
-from pounding.response import contact_output_matrix
-from pounding.simulation import simulate_record
-from pounding.validation import varied_case
+from pounding.closed_form.pair import LinearizedPair
+from pounding.closed_form.response import contact_output_matrix
+from pounding.simulation.monte_carlo import simulate_record
+from pounding.studies.paper_tables import varied_case
 from validation.residual_sampled import residual_response_sampled
 
 

@@ -8,10 +8,10 @@ import pytest
 from scipy.integrate import quad
 
 import pounding
-from pounding.excitation import CloughPenzien
-from pounding.linearization import linearize_pair
-from pounding.pair import LinearizedPair
-from pounding.response import ContactResponse, frequency_response, response_frequency
+from pounding.hazard.excitation import CloughPenzien
+from pounding.closed_form.linearization import linearize_pair
+from pounding.closed_form.pair import LinearizedPair
+from pounding.closed_form.response import ContactResponse, frequency_response, response_frequency
 
 DERIVED = (
     "sigma_displacement",
@@ -50,7 +50,7 @@ def test_routes_agree_at_any_pair_of_contact_floors(levels):
     """Three storeys beside two, contact at any floor of each: the state-space
     outputs and the frequency route pick their floors by separate code, so an
     indexing slip in either fails here."""
-    from pounding.validation import mdof_case
+    from pounding.studies.paper_tables import mdof_case
 
     case = mdof_case()
     case = dataclasses.replace(case, contact=dataclasses.replace(case.contact, levels=levels))
@@ -104,7 +104,7 @@ def test_one_storey_frf_is_eq22():
 def test_frf_of_two_storeys_solves_the_equations_of_motion():
     """Check H of a two-storey building against the state-space transfer
     function of the same linearized building."""
-    from pounding.linearization import building_state_space
+    from pounding.closed_form.linearization import building_state_space
 
     case = pounding.load_case("section6-T2-0.4")
     linear = linearize_pair(case)[0]

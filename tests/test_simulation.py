@@ -10,7 +10,7 @@ from scipy import integrate as scipy_integrate
 
 import pounding
 from pounding import BoucWen, Settings, SimulationError, integrate, load_case, simulate, simulate_record
-from pounding.excitation import ground_accelerations
+from pounding.hazard.excitation import ground_accelerations
 
 from .conftest import KANAI_TAJIMI_SI, make_case, one_storey
 from .reference import solve_reference
@@ -159,7 +159,7 @@ def test_cancel_stops_the_study():
     case = _shorter(load_case("section5-T2-0.4"), 5.0)
     cancel = threading.Event()
     cancel.set()
-    with pytest.raises(pounding.simulation.Cancelled):
+    with pytest.raises(pounding.simulation.monte_carlo.Cancelled):
         simulate(case, records=10, seed=0, cancel=cancel)
 
 

@@ -1,5 +1,6 @@
-"""The design rules the code base keeps (README.md, "Layout"): no import cycle, imports inside
-functions included; no module over 500 lines; every compiled (numba) function calls compiled functions of its
+"""The design rules the code base keeps (docs/architecture.md): the package's layers, each importing only
+the layers below it (imports inside functions included), the closed form nothing of the simulation; at most 10
+modules directly in ``pounding/``; no import cycle; no module over 500 lines; every compiled (numba) function calls compiled functions of its
 own file only, so that numba's on-disk cache, which does not see an edit to a callee in another file, cannot
 go stale; the fast path of ``pounding estimate`` imports no plotting or dashboard library."""
 
@@ -44,6 +45,72 @@ def _imports(name: str, path: Path, modules: dict[str, Path]) -> set[str]:
             continue
         found.update(c for c in candidates if c in modules and c != name)
     return found
+
+
+LAYERS = (
+    ("pounding", "pounding.presets"),  # the package-wide basics: the modules directly in pounding/, the presets
+    ("pounding.random_vibration", "pounding.mechanics"),
+    ("pounding.hazard",),
+    ("pounding.case",),
+    ("pounding.closed_form", "pounding.simulation"),
+    ("pounding.studies", "pounding.export"),
+    ("pounding.report",),
+    ("pounding.cli",),
+    ("pounding.__main__",),
+    ("dashboard",),
+)
+"""The layers, lowest first. A module imports from its own package, and from the layers below its own; packages
+that share a layer are independent of each other (the closed form and the simulation above all)."""
+
+
+def _package(module: str) -> str:
+    """The entry of :data:`LAYERS` that ``module`` belongs to."""
+    if module.count(".") == 1 and module != "pounding.__main__" and (ROOT / "pounding" / f"{module.split('.')[1]}.py").is_file():
+        return "pounding"
+    entries = [entry for layer in LAYERS for entry in layer[1 if layer[0] == "pounding" else 0:]
+               if module == entry or module.startswith(entry + ".")]
+    return max(entries, key=len) if entries else ("pounding" if module == "pounding" else "")
+
+
+def _rank(package: str) -> int:
+    return next(i for i, layer in enumerate(LAYERS) if package in layer)
+
+
+def test_every_module_belongs_to_a_layer():
+    assert all(_package(name) for name in _modules())
+
+
+@pytest.mark.parametrize("name", sorted(_modules()))
+def test_no_module_imports_from_a_layer_above_or_beside_its_own(name):
+    modules = _modules()
+    own = _package(name)
+    wrong = sorted(target for target in _imports(name, modules[name], modules)
+                   if _package(target) != own and _rank(_package(target)) >= _rank(own))
+    assert wrong == [], f"{name} ({own}) imports {wrong}"
+
+
+def test_the_closed_form_imports_nothing_from_the_simulation():
+    modules = _modules()
+    found = {name: sorted(t for t in _imports(name, path, modules) if t.startswith("pounding.simulation"))
+             for name, path in modules.items() if name.startswith("pounding.closed_form")}
+    assert len(found) > 10 and not any(found.values()), found
+
+
+def test_the_package_root_holds_at_most_10_modules():
+    files = sorted(p.name for p in (ROOT / "pounding").glob("*.py"))
+    assert "__init__.py" in files and len(files) <= 10, files
+
+
+def test_the_layer_rule_catches_an_upward_import(tmp_path):
+    """The rule itself: an import of the simulation from the closed form, or of the command line from the
+    mechanics, is found (inside a function too)."""
+    source = "def f():\n    from pounding.simulation.monte_carlo import simulate\n    import pounding.cli.commands\n"
+    path = tmp_path / "probe.py"
+    path.write_text(source)
+    modules = {**_modules(), "pounding.mechanics.probe": path}
+    found = _imports("pounding.mechanics.probe", path, modules)
+    assert {"pounding.simulation.monte_carlo", "pounding.cli.commands"} <= found
+    assert all(_rank(_package(t)) > _rank("pounding.mechanics") for t in found)
 
 
 def test_there_is_no_import_cycle():
@@ -100,7 +167,7 @@ def test_every_compiled_call_tree_lives_in_one_file():
 
 
 def test_an_estimate_imports_no_plotting_library():
-    code = ("import io, contextlib, sys\nfrom pounding.cli import main\n"
+    code = ("import io, contextlib, sys\nfrom pounding.cli.commands import main\n"
             "with contextlib.redirect_stdout(io.StringIO()):\n    main(['estimate', 'section5-T2-0.4', '--json'])\n"
             "print(sorted(m for m in ('bokeh', 'holoviews', 'panel', 'matplotlib', 'dask', 'pandas') if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=ROOT)
@@ -118,3 +185,4 @@ def test_every_data_file_of_the_package_is_in_the_wheel():
     data = [p.relative_to(package).as_posix() for p in package.rglob("*")
             if p.is_file() and p.suffix not in (".py", ".pyc", ".nbi", ".nbc") and "__pycache__" not in p.parts]
     assert data and all(any(fnmatch.fnmatch(name, pattern) for pattern in patterns) for name in data)
+

@@ -5,7 +5,7 @@ import pytest
 from scipy.linalg import eig
 
 from pounding import BoucWen, Building, Storey
-from pounding.structures import hysteresis
+from pounding.mechanics.structures import hysteresis
 
 
 @pytest.mark.parametrize("n", [1.0, 2.0, 3.0])

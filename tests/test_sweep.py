@@ -19,11 +19,12 @@ import pandas as pd
 import pytest
 
 from pounding import CaseError
-from pounding.case import case_from_dict
-from pounding.estimator import estimate
+from pounding.case.case import case_from_dict
+from pounding.closed_form.estimator import estimate
 from pounding.presets import preset_text
-from pounding.simulation import Settings, simulate
-from pounding.sweeps import SweepInterrupted, add_arguments, parse_values, parse_vary, run, sweep
+from pounding.simulation.monte_carlo import Settings, simulate
+from pounding.cli.sweep import add_arguments, run
+from pounding.studies.sweeps import SweepInterrupted, parse_values, parse_vary, sweep
 
 ROOT = Path(__file__).resolve().parents[1]
 VARY = {"contact.gap": "0.5:1.5:3", "buildings.2.storeys.1.period": [0.4, 0.6]}  # 6 points, kgf-cm-s
@@ -163,7 +164,7 @@ def test_a_cluster_given_by_its_scheduler_address(tmp_path, serial_table):
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
             distributed.Client(cluster) as client:
         table = run_sweep(tmp_path / "address", scheduler=cluster.scheduler_address, chunk_records=4)
-        assert list(client.run(lambda: importlib.import_module("pounding.sweeps.work")._WARM).values()) == [True, True]  # both warmed
+        assert list(client.run(lambda: importlib.import_module("pounding.studies.sweeps.work")._WARM).values()) == [True, True]  # both warmed
     pd.testing.assert_frame_equal(table, serial_table, check_exact=True)
 
 
@@ -245,7 +246,7 @@ def test_a_killed_client_loses_only_its_chunks_in_flight(tmp_path, serial_table)
 
 
 def tiny_cli(argv: list[str]) -> int:
-    """What ``pounding.cli.main`` does with ``run``: CaseError -> one line, exit 2."""
+    """What ``pounding.cli.commands.main`` does with ``run``: CaseError -> one line, exit 2."""
     parser = argparse.ArgumentParser(prog="pounding")
     commands = parser.add_subparsers(dest="command", required=True)
     add_arguments(commands.add_parser("sweep"))
@@ -301,11 +302,11 @@ def test_the_module_is_light_and_the_chart_only_imported_when_asked(tmp_path):
     case = write_case(tmp_path)
     code = textwrap.dedent(f"""
         import sys, argparse
-        import pounding.sweeps
+        import pounding.studies.sweeps, pounding.cli.sweep
         heavy = [name for name in ("dask", "distributed", "pandas", "bokeh") if name in sys.modules]
         assert not heavy, heavy
-        parser = pounding.sweeps.add_arguments(argparse.ArgumentParser())
-        pounding.sweeps.run(parser.parse_args([{str(case)!r}, "--records", "2", "-o", {str(tmp_path / "out")!r},
+        parser = pounding.cli.sweep.add_arguments(argparse.ArgumentParser())
+        pounding.cli.sweep.run(parser.parse_args([{str(case)!r}, "--records", "2", "-o", {str(tmp_path / "out")!r},
                                                "--scheduler", "serial", "--no-chart"]))
         assert "bokeh" not in sys.modules
         import pounding
@@ -317,10 +318,9 @@ def test_the_module_is_light_and_the_chart_only_imported_when_asked(tmp_path):
 
 
 def test_pounding_sweep_command_when_wired(tmp_path):
-    from pounding import cli
+    from pounding.cli import commands
 
-    if "sweep" not in getattr(cli, "_COMMANDS", {}):
-        pytest.skip("pounding sweep is not wired in pounding.cli yet")
+    assert "sweep" in commands._COMMANDS
     done = subprocess.run(
         [sys.executable, "-m", "pounding", "sweep", "section5-T2-0.4", "--vary", "contact.gap=1:2", "-o", str(tmp_path / "out")],
         cwd=ROOT, capture_output=True, text=True, timeout=60,

@@ -1,10 +1,10 @@
 """Write ``pounding/data/accuracy.json``: how far the recommended force was
 measured from Monte Carlo, by regime, and the fraction of simulated records
 pounding at the gap given for 95 % no pounding, by kind of pair. The
-estimate reads it (:func:`pounding.regimes.accuracy_data`) for the accuracy
+estimate reads it (:func:`pounding.closed_form.regimes.accuracy_data`) for the accuracy
 and the warnings it states.
 
-- Kanai-Tajimi force: the grid (``pounding.validation.accuracy_cases``) and
+- Kanai-Tajimi force: the grid (``pounding.studies.paper_tables.accuracy_cases``) and
   the draws ``random_cases(seed)`` for :data:`SEEDS` against Monte Carlo
   (300 records, seed 11), by the regime each estimate states, rare pounding
   split by whether a storey yields (:func:`validation.out_of_sample.measured`);
@@ -13,7 +13,7 @@ and the warnings it states.
 - the gap for 95 %: the draws against 400 records (seed 9) of their free
   motion (:func:`validation.out_of_sample.required_gaps`); the yielding kinds
   are the one-storey pairs, split by whether their floors move together
-  (``pounding.regimes.MOVING_TOGETHER``), as validation/HISTORY.md measured
+  (``pounding.closed_form.regimes.MOVING_TOGETHER``), as validation/HISTORY.md measured
   them; Clough-Penzien: :mod:`validation.record_synthesis`'s four pairs,
   1,000 records simulated at the gap (seed 9).
 
@@ -31,8 +31,8 @@ from pathlib import Path
 
 import numpy as np
 
-from pounding.pair import LinearizedPair
-from pounding.validation import accuracy_cases, random_cases
+from pounding.closed_form.pair import LinearizedPair
+from pounding.studies.paper_tables import accuracy_cases, random_cases
 
 from .out_of_sample import GAP_SEED, LABELS, measured, required_gaps
 from .record_synthesis import CLOUGH_PENZIEN_RECORDS, DESIGN_RECORDS, DESIGN_SEED, clough_penzien_cases, design_gap_cases, design_gap_fraction
@@ -50,7 +50,7 @@ YIELDING_FAMILIES = ("SDOF", "SDOF modulated")
 ELASTIC_FAMILIES = ("elastic", "elastic modulated")
 CLOUGH_PENZIEN_LABELS = ("gap below sigma_X", "rare, yielding", "rare, elastic")
 ABOUT = ("How far the recommended closed-form force was measured from Monte Carlo, by regime, and the fraction of "
-         "simulated records pounding at the gap given for 95 % no pounding. Read by pounding.regimes; see docs/accuracy.md.")
+         "simulated records pounding at the gap given for 95 % no pounding. Read by pounding.closed_form.regimes; see docs/accuracy.md.")
 
 
 def force_entry(errors) -> dict:
@@ -135,7 +135,7 @@ def accuracy_document(seeds=SEEDS, cases: int | None = None, records: int = RECO
                        f"Clough-Penzien cases; draws {draws}{size})"),
         "commit": commit,
         "monte_carlo": {"records": records, "seed": SEED},
-        "cases": (f"{grid} and {count} (pounding.validation.random_cases, seeds {draws}){size}; "
+        "cases": (f"{grid} and {count} (pounding.studies.paper_tables.random_cases, seeds {draws}){size}; "
                   f"the gap for 95 %: the same draws, {gap_records} records of the free motion, seed {GAP_SEED}; "
                   f"Clough-Penzien: validation/record_synthesis.py ({clough_penzien_records} records, seed {SEED}; "
                   f"at the gap for 95 %: {design_records} records, seed {DESIGN_SEED})"),

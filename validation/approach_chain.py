@@ -47,9 +47,9 @@ import math
 import numpy as np
 from scipy.linalg import expm
 
-from pounding.gap_aware import expected_maximum
-from pounding.pair import LinearizedPair
-from pounding.validation import accuracy_cases
+from pounding.closed_form.gap_aware import expected_maximum
+from pounding.closed_form.pair import LinearizedPair
+from pounding.studies.paper_tables import accuracy_cases
 
 from .clump_models import pair_lags, pair_rows, phi
 from .error_decomposition import RATE_CASES, approach_speeds, largest_expected_power, rice_expected_power

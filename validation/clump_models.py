@@ -39,10 +39,10 @@ from scipy.linalg import expm
 from scipy.special import erfc
 
 from pounding import load_case, simulate
-from pounding.excitation import ground_accelerations
-from pounding.pair import LinearizedPair
-from pounding.regimes import REGIMES
-from pounding.validation import accuracy_cases, random_cases, varied_case
+from pounding.hazard.excitation import ground_accelerations
+from pounding.closed_form.pair import LinearizedPair
+from pounding.closed_form.regimes import REGIMES
+from pounding.studies.paper_tables import accuracy_cases, random_cases, varied_case
 
 from .error_decomposition import ONE_SIDED, contact_motion, rice_expected_power, upcrossing_speeds, vanmarcke_clumps
 from .free_count import free_estimate, linearized
@@ -83,8 +83,8 @@ class Lags:
 
 def pair_rows(case_or_pair):
     """The linearized pair's state space, its contact-floor output rows
-    (:attr:`~pounding.pair.LinearizedPair.contact_outputs`) and the rows of X and V;
-    a case is linearized, a :class:`~pounding.pair.LinearizedPair` reused."""
+    (:attr:`~pounding.closed_form.pair.LinearizedPair.contact_outputs`) and the rows of X and V;
+    a case is linearized, a :class:`~pounding.closed_form.pair.LinearizedPair` reused."""
     pair = linearized(case_or_pair)
     outputs = pair.contact_outputs
     return pair.state_space, outputs, np.array([outputs[0] - outputs[1], outputs[2] - outputs[3]])

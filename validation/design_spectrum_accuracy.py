@@ -17,7 +17,7 @@ import json
 import numpy as np
 
 from pounding import estimate, simulate
-from pounding.case import case_from_dict
+from pounding.case.case import case_from_dict
 
 RECORDS, SEED = 300, 2022
 

@@ -17,7 +17,7 @@ from collections import defaultdict
 import numpy as np
 
 from pounding import estimate, simulate
-from pounding.validation import accuracy_cases, random_cases
+from pounding.studies.paper_tables import accuracy_cases, random_cases
 
 RECORDS, SEED = 500, 11
 PROBABILITIES = (0.5, 0.84, 0.95)

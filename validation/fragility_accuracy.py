@@ -13,9 +13,9 @@ import argparse
 
 import numpy as np
 
-from pounding.force_spectrum import force_spectrum
-from pounding.fragility import fragility_curve
-from pounding.monte_carlo_study import MonteCarloPlan
+from pounding.studies.force_spectrum import force_spectrum
+from pounding.studies.fragility import fragility_curve
+from pounding.studies.monte_carlo_study import MonteCarloPlan
 from pounding.units import STANDARD_GRAVITY
 
 RECORDS, SEED = 100, 5

@@ -3,7 +3,7 @@ free motion (without the impacts' damping of the motion between impacts, the
 count the estimator used before, ``estimate(case, impact_damping=False)``
 until the library dropped that option), or with another count of the largest
 approach in place of Vanmarcke's clumps. Built from the public blocks of
-:mod:`pounding.gap_aware`, for comparisons only.
+:mod:`pounding.closed_form.gap_aware`, for comparisons only.
 
     from validation.free_count import free_estimate
     free_estimate(case).force_expected          # the free count [N]
@@ -16,23 +16,23 @@ from collections.abc import Callable
 
 import numpy as np
 
-from pounding.case import Case
-from pounding.gap_aware import Crossings, expected_force_maximum, opposing_forces
-from pounding.impact_damping import DampedMotion
-from pounding.pair import LinearizedPair
-from pounding.regimes import accuracy_regime
+from pounding.case.case import Case
+from pounding.closed_form.gap_aware import Crossings, expected_force_maximum, opposing_forces
+from pounding.closed_form.impact_damping import DampedMotion
+from pounding.closed_form.pair import LinearizedPair
+from pounding.closed_form.regimes import accuracy_regime
 
 __all__ = ["CountedCrossings", "FreeEstimate", "free_estimate", "free_estimate_force", "linearized"]
 
 
 def linearized(case_or_pair) -> LinearizedPair:
-    """``case_or_pair`` as a :class:`~pounding.pair.LinearizedPair` (a case is linearized)."""
+    """``case_or_pair`` as a :class:`~pounding.closed_form.pair.LinearizedPair` (a case is linearized)."""
     return case_or_pair if isinstance(case_or_pair, LinearizedPair) else LinearizedPair.of(case_or_pair)
 
 
 @dataclasses.dataclass(frozen=True)
 class CountedCrossings(Crossings):
-    """:class:`~pounding.gap_aware.Crossings` whose count of the largest approach
+    """:class:`~pounding.closed_form.gap_aware.Crossings` whose count of the largest approach
     (:meth:`impacting_intensity`) is ``count(crossings, gaps, velocities, motion)``
     -> Lambda of shape (gaps, velocities), ``motion`` the damped motion at the gaps
     (ratios 1 on the free motion: ``free=True``, the count without the impacts'
@@ -69,7 +69,7 @@ class FreeEstimate:
 
 
 def free_estimate(case_or_pair, count: Callable | None = None, damped: bool = False) -> FreeEstimate:
-    """The gap-aware force of a case or :class:`~pounding.pair.LinearizedPair`,
+    """The gap-aware force of a case or :class:`~pounding.closed_form.pair.LinearizedPair`,
     the largest approach counted on the free motion (``damped=False``) or on
     the motion the impacts damp (``damped=True``, the estimator's), by the
     estimator's count or by ``count`` (see :class:`CountedCrossings`)."""

@@ -21,9 +21,9 @@ import argparse
 import numpy as np
 
 from pounding import load_case, simulate
-from pounding.estimator import estimate
-from pounding.pair import LinearizedPair
-from pounding.validation import accuracy_cases, random_cases, varied_case
+from pounding.closed_form.estimator import estimate
+from pounding.closed_form.pair import LinearizedPair
+from pounding.studies.paper_tables import accuracy_cases, random_cases, varied_case
 
 from .free_count import free_estimate
 from .sizes import first
@@ -41,7 +41,7 @@ def measured(cases, records: int = RECORDS) -> list[tuple[str, float, float]]:
 
 def measured_cases(cases, variant, records: int = RECORDS) -> list[tuple[str, str, tuple[float, float]]]:
     """(regime, kind, (error of the estimator, error of ``variant(pair)``, ``pair`` the case's
-    :class:`~pounding.pair.LinearizedPair`)) per case where some of ``records`` records (seed 11)
+    :class:`~pounding.closed_form.pair.LinearizedPair`)) per case where some of ``records`` records (seed 11)
     pounded; kind "elastic" or "yielding", the "rare" regime split by it."""
     out = []
     for case in cases:

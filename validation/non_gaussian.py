@@ -7,7 +7,7 @@ The linearized motion Y1 of an output (X or V) is Gaussian; the response Yr to
 the linearization's residual r is not. To first order in r the fourth
 cumulant of Y = Y1 + Yr is 4 E[Y1^3 Yr] (E[Y1 Yr] = 0, and the other terms are
 of order r^2). Only the third Wiener chaos of r meets Y1^3, so with the
-storey's chaos coefficients t_(3,a) (``pounding.linearization.residual``),
+storey's chaos coefficients t_(3,a) (``pounding.closed_form.linearization.residual``),
 c_i(tau) = Cov(Y1(t), xi_i(t - tau)) in the storey's whitened coordinates xi
 and h(tau) the impulse response from the storey's z equation to Y,
 
@@ -49,12 +49,12 @@ from scipy.optimize import brentq
 from scipy.special import ndtr
 
 from pounding import integrate, load_case
-from pounding.estimator import estimate
-from pounding.excitation import ground_accelerations
-from pounding.linearization.residual import residual_response, residual_storeys
-from pounding.pair import LinearizedPair
-from pounding.simulation import design_gap
-from pounding.validation import RANDOM_FAMILIES, accuracy_cases, random_cases
+from pounding.closed_form.estimator import estimate
+from pounding.hazard.excitation import ground_accelerations
+from pounding.closed_form.linearization.residual import residual_response, residual_storeys
+from pounding.closed_form.pair import LinearizedPair
+from pounding.simulation.monte_carlo import design_gap
+from pounding.studies.paper_tables import RANDOM_FAMILIES, accuracy_cases, random_cases
 from validation.residual_sampled import sampled_residual_paths
 
 from .approach_chain import linear_impacts_expected_power, linearized_pair

@@ -26,11 +26,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pounding.estimator import estimate
-from pounding.pair import LinearizedPair
-from pounding.regimes import MOVING_TOGETHER, REGIMES
-from pounding.simulation import design_gap
-from pounding.validation import RANDOM_FAMILIES, accuracy, accuracy_cases, random_cases
+from pounding.closed_form.estimator import estimate
+from pounding.closed_form.pair import LinearizedPair
+from pounding.closed_form.regimes import MOVING_TOGETHER, REGIMES
+from pounding.simulation.monte_carlo import design_gap
+from pounding.studies.paper_tables import RANDOM_FAMILIES, accuracy, accuracy_cases, random_cases
 
 from .sizes import first
 
@@ -89,9 +89,9 @@ class RequiredGap:
     """The closed-form gap for the target of one drawn case against Monte Carlo."""
 
     family: str
-    """Its kind of pair, one of :data:`~pounding.validation.RANDOM_FAMILIES`."""
+    """Its kind of pair, one of :data:`~pounding.studies.paper_tables.RANDOM_FAMILIES`."""
     moving_together: bool
-    """Whether the contact floors' linearized x1, x2 correlate at least :data:`~pounding.regimes.MOVING_TOGETHER`."""
+    """Whether the contact floors' linearized x1, x2 correlate at least :data:`~pounding.closed_form.regimes.MOVING_TOGETHER`."""
     fraction: float
     """Of the records, the fraction pounding at the closed-form gap [-]."""
     ratio: float

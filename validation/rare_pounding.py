@@ -17,8 +17,8 @@ from __future__ import annotations
 import dataclasses
 
 from pounding import load_case, simulate
-from pounding.estimator import estimate
-from pounding.validation import accuracy, varied_case
+from pounding.closed_form.estimator import estimate
+from pounding.studies.paper_tables import accuracy, varied_case
 
 from .sizes import first
 

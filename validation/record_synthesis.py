@@ -24,9 +24,9 @@ import argparse
 import dataclasses
 
 from pounding import load_case, simulate
-from pounding.estimator import estimate
-from pounding.excitation import CloughPenzien
-from pounding.validation import accuracy_cases, varied_case
+from pounding.closed_form.estimator import estimate
+from pounding.hazard.excitation import CloughPenzien
+from pounding.studies.paper_tables import accuracy_cases, varied_case
 
 from .sizes import first
 

@@ -5,7 +5,7 @@ c_e u' + k_e z and drops the residual r = g - c_e u' - k_e z. Along the
 linearized (Gaussian) motion r lies in the higher Wiener chaoses, so it is
 uncorrelated at every lag with the ground motion and the linear response: an
 extra input to each yielding storey. The recommended estimator adds the
-pair's response to it (``pounding.linearization.residual``, one pass). This
+pair's response to it (``pounding.closed_form.linearization.residual``, one pass). This
 script prints, for the contact floors' relative motion:
 
 1. sigma_X, sigma_V and the correlation of the two floors' velocities: the
@@ -31,9 +31,9 @@ import math
 import numpy as np
 
 from pounding import load_case, simulate_record
-from pounding.linearization.residual import residual_response
-from pounding.pair import LinearizedPair
-from pounding.validation import varied_case
+from pounding.closed_form.linearization.residual import residual_response
+from pounding.closed_form.pair import LinearizedPair
+from pounding.studies.paper_tables import varied_case
 from validation.residual_sampled import residual_response_sampled
 
 from .record_synthesis import clough_penzien, with_excitation

@@ -1,4 +1,4 @@
-"""A slow, independent reference (validation code, not the product) for :func:`~pounding.linearization.residual.residual_response`:
+"""A slow, independent reference (validation code, not the product) for :func:`~pounding.closed_form.linearization.residual.residual_response`:
 the linearized pair's response to the residual of the Bouc-Wen law, by sampling trajectories."""
 
 from __future__ import annotations
@@ -6,9 +6,9 @@ from __future__ import annotations
 import numpy as np
 from scipy.linalg import expm
 
-from pounding.integrator import bouc_wen_rates
-from pounding.linearization import LinearizedBuilding, StateSpace
-from pounding.linearization.residual import residual_storeys
+from pounding.mechanics.integrator import bouc_wen_rates
+from pounding.closed_form.linearization import LinearizedBuilding, StateSpace
+from pounding.closed_form.linearization.residual import residual_storeys
 
 __all__ = ["residual_response_sampled", "sampled_residual_paths"]
 

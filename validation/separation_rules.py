@@ -9,7 +9,7 @@ floor's mean peak, and two closed forms are set against it:
 - Davenport's factor on the stationary sigma (Michaelov's equivalent process
   under an envelope), with twice the upcrossing rate for |x|: the estimate's
   rule until this was measured;
-- :func:`pounding.peaks.expected_absolute_peak`: the floor's sigmas from rest
+- :func:`pounding.random_vibration.peaks.expected_absolute_peak`: the floor's sigmas from rest
   (or under the envelope) with Vanmarcke's clumps, the estimate's rule now.
 
 Cases: the grid's buildings and excitations (each once, the gap variants
@@ -27,10 +27,10 @@ import math
 import numpy as np
 
 from pounding import simulate
-from pounding.estimator import estimate
-from pounding.pair import LinearizedPair
-from pounding.peaks import davenport_peak_factor, envelope_variance, equivalent_stationary
-from pounding.validation import accuracy_cases, random_cases
+from pounding.closed_form.estimator import estimate
+from pounding.closed_form.pair import LinearizedPair
+from pounding.random_vibration.peaks import davenport_peak_factor, envelope_variance, equivalent_stationary
+from pounding.studies.paper_tables import accuracy_cases, random_cases
 
 from .sizes import first
 

@@ -23,7 +23,7 @@ from dataclasses import replace
 import numpy as np
 
 from pounding import load_case, simulate_record
-from pounding.pair import LinearizedPair
+from pounding.closed_form.pair import LinearizedPair
 
 from .sizes import first
 

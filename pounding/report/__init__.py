@@ -24,10 +24,10 @@ state), :mod:`.card` (the result card), :mod:`.figures` (the plots),
 :mod:`.print_css` (A4).
 """
 
-from .card import RESULT_CSS, result_html
-from ..display_units import DISPLAY_UNITS, Display, display
-from .figures import PLOTTED_STEPS, Figures
-from .snapshot import (
+from pounding.report.card import RESULT_CSS, result_html
+from pounding.display_units import DISPLAY_UNITS, Display, display
+from pounding.report.figures import PLOTTED_STEPS, Figures
+from pounding.report.snapshot import (
     DEFAULT_RECORD,
     DEFAULT_SEED,
     GAP_POINTS,
@@ -37,10 +37,10 @@ from .snapshot import (
     compute_snapshot,
     gap_grid,
 )
-from .method_section import method_notes
-from .provenance import CaseChange, ReportProvenance, case_changes, case_provenance
-from .static import REPORT_NOTE, report_html, write_report
-from .summary import MonteCarloCheck, monte_carlo_check
+from pounding.report.method_section import method_notes
+from pounding.report.provenance import CaseChange, ReportProvenance, case_changes, case_provenance
+from pounding.report.static import REPORT_NOTE, report_html, write_report
+from pounding.report.summary import MonteCarloCheck, monte_carlo_check
 
 __all__ = [
     "CaseChange",

@@ -14,9 +14,9 @@ import dataclasses
 import math
 import re
 
-from .. import defaults
-from ..excitation import CloughPenzien, Excitation, ShinozukaSato
-from ..units import SI, UnitSystem, unit_system
+from pounding import defaults
+from pounding.hazard.excitation import CloughPenzien, Excitation, ShinozukaSato
+from pounding.units import SI, UnitSystem, unit_system
 
 __all__ = ["DEFAULTS", "file_units", "key_label", "key_unit", "normalized_case_file", "to_units"]
 
@@ -27,7 +27,7 @@ def _field_defaults(cls, names: tuple[str, ...]) -> dict:
 
 
 _SAMPLING = _field_defaults(Excitation, ("time_step", "cutoff_frequency", "synthesis_factor"))
-# The parser's defaults for keys a case file may leave out (pounding.case, pounding.case_excitation and
+# The parser's defaults for keys a case file may leave out (pounding.case.case, pounding.case.excitation and
 # the dataclasses they build); tests/test_report_provenance.py checks each against the parser.
 DEFAULTS = {
     "excitation": {"spectrum": "kanai-tajimi", "envelope": "none"},
@@ -92,7 +92,7 @@ def _dimension(key: str, data: dict) -> dict | str | None:
         n = storey.get("bouc_wen", {}).get("n", DEFAULTS["bouc_wen"]["n"]) if isinstance(storey, dict) else 1.0
         return {"length": -_number_or(n, 1.0)}
     if pattern == "contact.stiffness":
-        from ..contact import contact_law
+        from pounding.mechanics.contact import contact_law
 
         try:
             exponent = contact_law(data.get("contact", {}).get("model", "jankowski"), "contact.model").stiffness_exponent

@@ -8,11 +8,11 @@ import html
 
 import numpy as np
 
-from .. import defaults
-from ..display_units import display
-from ..monte_carlo_result import quantile_interval
-from .snapshot import MonteCarloPoint, Snapshot
-from .summary import matching_study
+from pounding import defaults
+from pounding.display_units import display
+from pounding.simulation.result import quantile_interval
+from pounding.report.snapshot import MonteCarloPoint, Snapshot
+from pounding.report.summary import matching_study
 
 __all__ = ["distribution_figure", "matching_records", "quantiles_table"]
 

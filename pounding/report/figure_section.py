@@ -10,15 +10,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import defaults
-from ..display_units import Display, display
-from .distribution_section import distribution_figure, matching_records
-from .figures import Figures
-from .hazard_section import SPECTRUM_RECORDS, hazard_figure
-from .inputs_section import SPECTRUM_NAMES, code_parameters
-from .print_css import FIGURE_WIDTH
-from .snapshot import Snapshot
-from .summary import matching_study
+from pounding import defaults
+from pounding.display_units import Display, display
+from pounding.report.distribution_section import distribution_figure, matching_records
+from pounding.report.figures import Figures
+from pounding.report.hazard_section import SPECTRUM_RECORDS, hazard_figure
+from pounding.report.inputs_section import SPECTRUM_NAMES, code_parameters
+from pounding.report.print_css import FIGURE_WIDTH
+from pounding.report.snapshot import Snapshot
+from pounding.report.summary import matching_study
 
 __all__ = ["ReportFigure", "figures_html", "report_figures"]
 
@@ -96,8 +96,8 @@ def report_figures(snapshot: Snapshot, units: str = "SI") -> list[ReportFigure]:
 
 def _pga_g(snapshot: Snapshot) -> float:
     """The expected PGA of the case's records [g]."""
-    from ..peak_factors import expected_peak_ground_acceleration
-    from ..units import STANDARD_GRAVITY
+    from pounding.random_vibration.peak_factors import expected_peak_ground_acceleration
+    from pounding.units import STANDARD_GRAVITY
 
     return expected_peak_ground_acceleration(snapshot.case.excitation) / STANDARD_GRAVITY
 
@@ -151,7 +151,7 @@ def figures_html(figures: list[ReportFigure]) -> tuple[str, str, str]:
 
     Each figure is a ``<figure id="figure-N">`` whose caption is ``#figure-N-caption``; the list links to
     both, so a printed PDF keeps both as destinations (the tests read their pages from it)."""
-    from ..bokeh_embed import embedded
+    from pounding.report.bokeh_embed import embedded
 
     script, divs, library = embedded([plot for figure in figures for plot in figure.plots])
     divs = iter(divs)

@@ -7,10 +7,10 @@ import math
 
 import numpy as np
 
-from ..simulation import DesignGap, TimeHistory
-from ..units import STANDARD_GRAVITY
-from ..display_units import display
-from .snapshot import Snapshot
+from pounding.simulation.monte_carlo import DesignGap, TimeHistory
+from pounding.units import STANDARD_GRAVITY
+from pounding.display_units import display
+from pounding.report.snapshot import Snapshot
 
 # --- plots ---------------------------------------------------------------------
 

@@ -6,13 +6,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import defaults
-from ..case import Case
-from ..display_units import display
-from ..ground_motion import ground_motion_batches
-from ..hazard import DesignSpectrum
-from ..response_spectra import pseudo_acceleration_spectrum
-from ..units import STANDARD_GRAVITY
+from pounding import defaults
+from pounding.case.case import Case
+from pounding.display_units import display
+from pounding.simulation.ground_motion import ground_motion_batches
+from pounding.hazard.sources import DesignSpectrum
+from pounding.hazard.response_spectra import pseudo_acceleration_spectrum
+from pounding.units import STANDARD_GRAVITY
 
 __all__ = ["SPECTRUM_RECORDS", "hazard_figure"]
 

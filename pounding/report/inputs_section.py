@@ -8,13 +8,13 @@ from __future__ import annotations
 
 import html
 
-from ..case import Case
-from ..design_spectra import ASCE7Spectrum, Eurocode8Spectrum
-from ..display_units import display
-from ..engineering import engineering_terms
-from ..filter_bank import FilterBank
-from ..hazard import DesignSpectrum
-from ..units import STANDARD_GRAVITY
+from pounding.case.case import Case
+from pounding.hazard.design_spectra import ASCE7Spectrum, Eurocode8Spectrum
+from pounding.display_units import display
+from pounding.case.engineering import engineering_terms
+from pounding.hazard.filter_bank import FilterBank
+from pounding.hazard.sources import DesignSpectrum
+from pounding.units import STANDARD_GRAVITY
 
 __all__ = ["SPECTRUM_NAMES", "code_parameters", "input_rows", "inputs_html"]
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import html
 
-from ..regimes import accuracy_data
+from pounding.closed_form.regimes import accuracy_data
 
 __all__ = ["accuracy_table", "method_notes"]
 

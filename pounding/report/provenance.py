@@ -15,9 +15,9 @@ import math
 import tomllib
 from dataclasses import dataclass
 
-from ..errors import CaseError
-from ..presets import preset_text
-from .case_keys import file_units, key_unit, normalized_case_file, to_units
+from pounding.errors import CaseError
+from pounding.presets import preset_text
+from pounding.report.case_keys import file_units, key_unit, normalized_case_file, to_units
 
 __all__ = ["CaseChange", "ReportProvenance", "case_changes", "case_provenance"]
 
@@ -208,7 +208,7 @@ def _item(items: list, index: int) -> dict:
 
 def _bouc_wen(storey: dict) -> dict | None:
     """The Bouc-Wen law (file units) of a storey given by its yield drift or yield force (G28); None if it cannot be built."""
-    from ..structures import BoucWen
+    from pounding.mechanics.structures import BoucWen
 
     table = storey["hysteresis"]
     try:
@@ -221,7 +221,7 @@ def _bouc_wen(storey: dict) -> dict | None:
 
 def _g0(excitation: dict, data: dict) -> float | None:
     """G0 (in the units of case file ``data``) of its excitation given by its expected PGA; None if it cannot be built."""
-    from ..case_excitation import read_excitation
+    from pounding.case.excitation import read_excitation
 
     units = file_units(data)
     try:

@@ -7,13 +7,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .. import defaults
-from ..case import Case
-from ..errors import SimulationError
-from ..estimator import Estimate, GapCurve, estimate
-from ..linearization import equivalent_storey_force
-from ..pair import LinearizedPair
-from ..simulation import DesignGap, SimulationResult, TimeHistory, simulate_record
+from pounding import defaults
+from pounding.case.case import Case
+from pounding.errors import SimulationError
+from pounding.closed_form.estimator import Estimate, GapCurve, estimate
+from pounding.closed_form.linearization import equivalent_storey_force
+from pounding.closed_form.pair import LinearizedPair
+from pounding.simulation.monte_carlo import DesignGap, SimulationResult, TimeHistory, simulate_record
 
 DEFAULT_SEED = defaults.REPORT_SEED
 """Seed of the study whose record the hysteresis loops show."""

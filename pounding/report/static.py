@@ -17,22 +17,22 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import __version__
-from ..bokeh_embed import without_external
-from ..case import Case, load_case
-from ..engineering import engineering_terms
-from ..output import check_target, write_atomic
-from ..presets import preset_text
-from .card import RESULT_CSS, result_html
-from .case_keys import key_label
-from .distribution_section import quantiles_table
-from .figure_section import figures_html, report_figures
-from .inputs_section import inputs_html
-from .method_section import method_notes
-from .print_css import REPORT_CSS
-from .provenance import ReportProvenance
-from .snapshot import Snapshot, compute_snapshot
-from .summary import summary_html
+from pounding import __version__
+from pounding.report.bokeh_embed import without_external
+from pounding.case.case import Case, load_case
+from pounding.case.engineering import engineering_terms
+from pounding.output import check_target, write_atomic
+from pounding.presets import preset_text
+from pounding.report.card import RESULT_CSS, result_html
+from pounding.report.case_keys import key_label
+from pounding.report.distribution_section import quantiles_table
+from pounding.report.figure_section import figures_html, report_figures
+from pounding.report.inputs_section import inputs_html
+from pounding.report.method_section import method_notes
+from pounding.report.print_css import REPORT_CSS
+from pounding.report.provenance import ReportProvenance
+from pounding.report.snapshot import Snapshot, compute_snapshot
+from pounding.report.summary import summary_html
 
 # --- the static report ---------------------------------------------------------
 

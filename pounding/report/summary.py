@@ -8,9 +8,9 @@ import html
 import math
 from dataclasses import dataclass
 
-from .. import defaults
-from ..display_units import Display, display
-from .snapshot import MonteCarloPoint, Snapshot
+from pounding import defaults
+from pounding.display_units import Display, display
+from pounding.report.snapshot import MonteCarloPoint, Snapshot
 
 __all__ = ["MonteCarloCheck", "matching_study", "monte_carlo_check", "summary_rows", "summary_html"]
 

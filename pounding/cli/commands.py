@@ -1,0 +1,464 @@
+"""The ``pounding`` command line.
+
+Kept light: nothing on the path of ``cases``, ``simulate`` (and later
+``estimate``) imports a plotting or dashboard library.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+import warnings
+from functools import partial
+
+from pounding import defaults
+from pounding.cli.arguments import study_size
+from pounding.cli.parser import EXIT_BAD_INPUT, parser
+
+
+def _progress_bar(total: int, enabled: bool):
+    """A tqdm bar on stderr when it is a terminal; otherwise nothing."""
+    if not enabled:
+        return None
+    from tqdm import tqdm
+
+    return tqdm(total=total, unit="record", file=sys.stderr, dynamic_ncols=True)
+
+
+def _cases(_args) -> int:
+    from pounding.presets import preset_description, preset_names
+
+    for name in preset_names():
+        print(name)
+        print(f"    {preset_description(name)}")
+    return 0
+
+
+def _format_force(newtons: float) -> str:
+    return f"{newtons / 1e6:.4f} MN" if abs(newtons) >= 1e5 else f"{newtons / 1e3:.2f} kN"
+
+
+def _force_text(units: str):
+    """How ``estimate`` and ``simulate`` print a force [N]: kN or MN (SI), or kgf (``--units kgf-cm-s``)."""
+    if units == "SI":
+        return lambda n: _format_force(n) if abs(n) < 1e12 else f"{n / 1e6:.4g} MN"
+    from pounding.display_units import display
+
+    return display(units).force
+
+
+def _capacity(args) -> float | None:
+    """``--capacity`` in N: given in N, or in kgf with ``--units kgf-cm-s`` (converted here, once)."""
+    if args.capacity is None:
+        return None
+    from pounding.display_units import display
+
+    return args.capacity * display(args.units).system.force
+
+
+def _simulate(args) -> int:
+    from pounding.case.case import load_case
+    from pounding.errors import ConvergenceError, check_probability
+    from pounding.closed_form.estimator import estimate
+    from pounding.simulation.monte_carlo import Settings, design_gap, simulate
+
+    if args.design_gap is not None:
+        check_probability(args.design_gap, "--design-gap")
+    case = load_case(args.case)
+    capacity = _capacity(args)
+    settings = Settings(tolerance=args.tolerance)
+    records, seed = study_size(case, args)
+    bar = _progress_bar(records, sys.stderr.isatty())
+    study = simulate if args.design_gap is None else partial(design_gap, target_probability=args.design_gap)
+    try:
+        result = study(case, records=records, seed=seed, settings=settings,
+                       progress=(lambda done, total: bar.update(done - bar.n)) if bar else None)
+    finally:
+        if bar is not None:
+            bar.close()
+    try:  # a few ms beside seconds of simulation: the two methods side by side
+        closed_form, failure = estimate(case, target_probability=args.design_gap or defaults.TARGET_PROBABILITY), None
+    except (ConvergenceError, ValueError, ArithmeticError) as error:  # CaseError, LinAlgError, overflow: the MC stands
+        closed_form, failure = None, " ".join(str(error).split()) or type(error).__name__  # one line: why not
+    force_text = _force_text(args.units)
+    error_text = lambda f, r: f"{100 * (f / r - 1):+.1f} %" if abs(f / r - 1) <= 1e4 else f"{f / r:.3g} times"
+    if args.design_gap is not None:
+        return _print_design_gap(case, result, closed_form, failure, args)
+    if args.json:
+        beside = {"error": failure} if closed_form is None else _closed_form_dict(closed_form, capacity)
+        out = {**result.to_dict(), "closed_form": beside}
+        if capacity is not None:
+            out.update(capacity=capacity, **result.exceedance(capacity))
+        print(json.dumps(out))
+        return 0
+    low, high = result.force_max_confidence_interval
+    print(f"case            {case.name}")
+    print(f"records         {_records_text(case, result.n_records, seed)}")
+    if math.isfinite(result.force_max_std_error):
+        print(f"mean F_max      {force_text(result.force_max_mean)}  (standard error {force_text(result.force_max_std_error)})")
+        print(f"95% CI          {force_text(low)} .. {force_text(high)}")
+    else:
+        print(f"mean F_max      {force_text(result.force_max_mean)}  (one record: no standard error; run 2 or more)")
+    print("F_max fractiles " + ", ".join(f"{100 * float(key):g} %: {force_text(result.force_max_quantile(float(key))[0])}"
+                                         for key in defaults.FORCE_QUANTILES))
+    if capacity is not None:
+        exceeding = result.exceedance(capacity)
+        low_p, high_p = exceeding["probability_exceeding_interval"]
+        print(f"P(F_max > {force_text(capacity)})  {100 * exceeding['probability_exceeding']:.1f} % of records "
+              f"(95 % interval {100 * low_p:.1f} to {100 * high_p:.1f} %)")
+    print(f"pounding        {100 * result.pounding_fraction:.1f} % of records, {result.impacts_mean:.2f} impacts per record")
+    print(f"peak impact v   {result.impact_velocity_max.mean():.4f} m/s (mean over records)")
+    if closed_form is None:
+        print(f"closed form     n/a: {failure}")
+        return 0
+    print("closed form, against this Monte Carlo")
+    for label, force in (("recommended", closed_form.force_expected), ("paper", closed_form.paper.force_expected)):
+        if force is None:
+            print(f"  {label:12s}  n/a (Eq. 13-14 hold for the Hertz-type laws only)")
+        elif result.force_max_mean > 0.0:
+            # The mean's 95 % interval read as a range of the closed form's error.
+            print(f"  {label:12s}  {force_text(force)}   {error_text(force, result.force_max_mean)}"
+                  + (f"   ({error_text(force, high)} to {error_text(force, low)} against the ends of the Monte Carlo's 95 % CI)"
+                     if low > 0.0 else ""))
+        else:
+            print(f"  {label:12s}  {force_text(force)}   (no record pounded)")
+    print(f"  pounding      {100 * closed_form.pounding_probability:.1f} % probability   (simulated: {100 * result.pounding_fraction:.1f} % of records)")
+    print(f"  regime        {closed_form.accuracy_regime}: {closed_form.measured_accuracy}")
+    for warning in closed_form.warnings:
+        print(f"  warning: {warning}")
+    return 0
+
+
+def _records_text(case, count: int, seed: int) -> str:
+    if case.recorded:
+        return f"{count} recorded motions ({case.hazard.scaling}), each over its own length"
+    return f"{count} x {case.excitation.duration:g} s, seed {seed}"
+
+
+def _closed_form_dict(closed_form, capacity: float | None = None) -> dict:
+    """The closed form's numbers printed beside a Monte Carlo study (SI), with its warnings."""
+    keys = ("force_expected", "pounding_probability", "impacts_expected", "accuracy_regime", "measured_accuracy")
+    distribution = closed_form.force_max_distribution
+    out = {**{key: getattr(closed_form, key) for key in keys}, "paper_force_expected": closed_form.paper.force_expected,
+           "force_max_quantiles": {key: distribution.quantile(float(key)) for key in defaults.FORCE_QUANTILES},
+           "warnings": list(closed_form.warnings)}
+    if capacity is not None:
+        out["probability_exceeding"] = closed_form.probability_exceeding(capacity)
+    return out
+
+
+def _print_design_gap(case, result, closed_form, failure, args) -> int:
+    required = None if closed_form is None else closed_form.required_gap
+    if args.json:
+        failed = {} if failure is None else {"closed_form_error": failure}
+        print(json.dumps({"case": case.name, **result.to_dict(), "closed_form_required_gap": required, **failed}))
+        return 0
+    print(f"case            {case.name}")
+    print(f"records         {_records_text(case, result.n_records, result.seed)} (free motion: the case's gap is not used)")
+    bound = f"{100 * result.upper_bound:.2f} cm" if math.isfinite(result.upper_bound) else f"n/a: it needs {result.records_for_bound} records"
+    print(f"gap for {100 * result.target_probability:g} % no pounding   {100 * result.gap:.2f} cm   (90 % confidence bound {bound})")
+    if closed_form is None:
+        print(f"closed form     n/a: {failure}")
+    else:
+        print(f"closed form     {100 * required:.2f} cm   (pounding estimate; docs/accuracy.md gives how far it was measured off)")
+    return 0
+
+
+def _estimate(args) -> int:
+    from pounding.case.case import load_case
+    from pounding.cli.hazard import engineering_lines
+    from pounding.case.engineering import engineering_terms
+    from pounding.closed_form.estimator import estimate
+
+    case = load_case(args.case)
+    capacity = _capacity(args)
+    result = estimate(case, target_probability=args.target_probability, paper_variance=args.paper_variance,
+                      michaelov_n1=args.michaelov_n1)
+    if args.json:
+        out = result.to_dict()
+        if capacity is not None:
+            out["capacity"] = capacity
+            out["probability_exceeding"] = result.probability_exceeding(capacity)
+        print(json.dumps(out))
+        return 0
+    paper = result.paper
+    rules = result.separation_rules
+    force_text = _force_text(args.units)
+    print(f"case                        {case.name} ({'stationary' if case.excitation.stationary else 'non-stationary'}, {case.excitation.duration:.4g} s)")
+    print(f"gap                         {100 * case.contact.gap:{'.2f' if case.contact.gap < 1e4 else '.4g'}} cm")
+    linearized = result.response
+    for line in engineering_lines(engineering_terms(case), force_text):
+        print(line)
+    print(f"sigma relative displacement {100 * result.sigma_relative_displacement:.3f} cm   "
+          f"(linearized {100 * linearized.sigma_relative_displacement:.3f} cm, plus the residual's response)")
+    print(f"sigma relative velocity     {result.sigma_relative_velocity:.4f} m/s   "
+          f"(linearized {linearized.sigma_relative_velocity:.4f} m/s)")
+    print("recommended (gap-aware)")
+    print(f"  expected extreme force    {force_text(result.force_expected)}")
+    print(f"  expected peak impact v    {result.relative_velocity_expected:.4f} m/s")
+    quantiles = result.force_max_distribution
+    print(f"  F_max fractiles           50 %: {force_text(quantiles.quantile(0.5))}, 84 %: {force_text(quantiles.quantile(0.84))}, "
+          f"95 %: {force_text(quantiles.quantile(0.95))}")
+    if capacity is not None:
+        print(f"  P(F_max > {force_text(capacity)})  {100 * result.probability_exceeding(capacity):.1f} %")
+    print(f"  expected impacts          {result.impacts_expected:.2f}   (approaches from below the gap; rebounds not counted)")
+    print("  force braking an impact   " + (f"{force_text(result.opposing_force)}   (the buildings' own, at the gap)"
+                                              if result.impacts_expected > 0.0 else "n/a (no impact expected at this gap)"))
+    print(f"  impacts' damping          sigma_V x{result.impacting_velocity_ratio:.3f} before an approach   "
+          f"(memory {result.impact_memory:.2f}; a dashpot of {result.impact_dashpot:.4g} N s/m between the floors)")
+    print(f"  pounding probability      {100 * result.pounding_probability:.1f} %")
+    print(f"  gap for {100 * result.target_probability:g} % no pounding  {100 * result.required_gap:.2f} cm"
+          f"   (SRSS {100 * rules['srss']:.2f} cm, ABS {100 * rules['abs']:.2f} cm, DDC {100 * rules['ddc']:.2f} cm)")
+    print(f"  accuracy                  {result.measured_accuracy}")
+    print("paper (Rahimi & Soltani 2016, Eq. 12-30)")
+    if paper.force_expected is None:
+        print("  expected extreme force    n/a (Eq. 13-14 hold for the Hertz-type laws only)")
+    else:
+        print(f"  expected extreme force    {force_text(paper.force_expected)}")
+    print(f"  expected extreme velocity {paper.relative_velocity_expected:.4f} m/s   (peak factor {paper.peak_factor:.3f})")
+    print(f"  crossing rate (Eq. 24)    {paper.crossing_rate:.4f} 1/s, effective duration {paper.duration_effective:.2f} s")
+    if paper.michaelov_n1 is not None:
+        print(f"  equivalent sigma (Eq. 29) {paper.sigma_relative_velocity_equivalent:.4f} m/s   "
+              f"(Michaelov's n1 = {paper.michaelov_n1:g}, sigma_V(t) by {args.paper_variance})")
+    for warning in result.warnings:
+        print(f"warning: {warning}")
+    return 0
+
+
+def _accuracy(args) -> int:
+    from pounding.studies.paper_tables import accuracy, accuracy_cases
+
+    cases = accuracy_cases()
+    bar = _progress_bar(len(cases), sys.stderr.isatty())
+    try:
+        rows = accuracy(cases, records=args.records, seed=args.seed, progress=(lambda done, total: bar.update(done - bar.n)) if bar else None)
+    finally:
+        if bar is not None:
+            bar.close()
+    if args.json:
+        print(json.dumps({"records": args.records, "seed": args.seed, "units": {"force": "N"},
+                          "rows": [dict(row.__dict__, recommended_error=row.recommended_error, paper_error=row.paper_error) for row in rows]}))
+        return 0
+
+    def percent(error):
+        return "n/a" if error is None else f"{100 * error:+.1f} %"
+
+    print(f"Monte Carlo: {args.records} records per case, seed {args.seed}; errors are estimate / Monte Carlo - 1.\n")
+    print("| case | regime | gap / sigma_X | Monte Carlo E[F_max] (kN) | s.e. | recommended | paper | P(pounding) MC | P estimate |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for row in rows:
+        relative = "n/a" if row.monte_carlo == 0.0 else f"{100 * row.monte_carlo_std_error / row.monte_carlo:.1f} %"
+        print(f"| {row.case} | {row.accuracy_regime} | {row.gap_over_sigma:.2f} | {row.monte_carlo / 1e3:.1f} | {relative} | "
+              f"{percent(row.recommended_error)} | {percent(row.paper_error)} | {row.pounding_fraction:.3f} | {row.pounding_probability:.3f} |")
+    unpounded = sum(row.monte_carlo == 0.0 for row in rows)
+    if unpounded:
+        print(f"\nno record pounded in {unpounded} case(s): no relative error there (n/a); more records would tell")
+    for label, errors in (("recommended", [r.recommended_error for r in rows]), ("paper", [r.paper_error for r in rows])):
+        magnitudes = sorted(abs(e) for e in errors if e is not None)
+        if not magnitudes:
+            continue
+        within = sum(m <= 0.10 for m in magnitudes)
+        print(f"\n{label}: median |error| {100 * magnitudes[len(magnitudes) // 2]:.1f} %, largest {100 * magnitudes[-1]:.1f} %, "
+              f"within 10 %: {within} of {len(magnitudes)}", end="")
+    print()
+    return 0
+
+
+def _validate(args) -> int:
+    from pounding.studies.paper_tables import ASSUMPTIONS, READINGS_MEASURED, validate
+
+    if args.grid:
+        return _accuracy(args)
+
+    bar = _progress_bar(24, sys.stderr.isatty())
+    try:
+        rows = validate(records=args.records, seed=args.seed, progress=(lambda done, total: bar.update(done - bar.n)) if bar else None)
+    finally:
+        if bar is not None:
+            bar.close()
+    if args.json:
+        print(json.dumps({"records": args.records, "seed": args.seed, "rows": [row.to_dict() for row in rows],
+                          "assumptions": list(ASSUMPTIONS), "readings_measured": READINGS_MEASURED, "units": {"force": "N"}}))
+        return 0
+
+    def mn(value):
+        return "   n/a" if value is None else f"{value / 1e6:6.3f}"
+
+    print(f"Expected extreme pounding force [MN]; Monte Carlo: {args.records} records, seed {args.seed}.")
+    current = None
+    for row in rows:
+        if (row.table, row.reading) != current:
+            current = (row.table, row.reading)
+            print(f"\n{row.table}, excitation {row.reading}")
+            print("  T1, T2 (s)   paper exact  paper proposed | Monte Carlo (+- s.e.)  paper's method  recommended")
+        print(f"  1.2, {row.period_2:.1f}      {mn(row.paper_exact)}       {mn(row.paper_proposed)}    |"
+              f"  {mn(row.monte_carlo)} +- {row.monte_carlo_std_error / 1e6:.3f}      {mn(row.paper_estimator)}       {mn(row.recommended_estimator)}")
+    print("\nAssumptions where the paper is silent or misprinted:")
+    for line in ASSUMPTIONS:
+        print(f"  - {line}")
+    print(f"\nThe two readings of the excitation: {READINGS_MEASURED}")
+    return 0
+
+
+def _dashboard(args) -> int:
+    from pounding.cli.serve import serve_dashboard
+
+    return 0 if serve_dashboard(port=args.port, show=args.show, extra_origins=args.allow_websocket_origin) == 0 else 1
+
+
+def _report(args) -> int:
+    from dataclasses import replace
+    from pathlib import Path
+
+    from pounding.case.case import load_case
+    from pounding.errors import CaseError, check_probability
+    from pounding.output import check_target
+    from pounding.simulation.monte_carlo import design_gap, simulate
+
+    if args.design_gap is not None:
+        check_probability(args.design_gap, "--design-gap")
+        if not args.records:
+            raise CaseError("--design-gap", "needs records: give --records N (N >= 1)")
+    case = load_case(args.case)
+    check_target(args.output, "--output", probe=True)  # before any work: "", a device, a folder, read-only are refused
+    path = Path(args.output)
+    # The plotting libraries load here only: every other command stays fast.
+    from pounding.report import MonteCarloPoint, compute_snapshot, write_report
+
+    # The estimate first (milliseconds): if it cannot be made, no simulation is wasted.
+    snapshot = compute_snapshot(case, target_probability=args.design_gap or defaults.TARGET_PROBABILITY)
+
+    def run(study):
+        bar = _progress_bar(args.records, sys.stderr.isatty())
+        try:
+            return study(case, records=args.records, seed=args.seed, progress=(lambda done, total: bar.update(done - bar.n)) if bar else None)
+        finally:
+            if bar is not None:
+                bar.close()
+
+    monte_carlo = (MonteCarloPoint.from_result(run(simulate)),) if args.records else ()
+    free = run(partial(design_gap, target_probability=args.design_gap)) if args.design_gap is not None else None
+    snapshot = replace(snapshot, monte_carlo=monte_carlo, design_gap=free)
+    write_report(path, snapshot, units=args.units, field="--output", provenance=_report_provenance(args))
+    if args.json:
+        figures = snapshot.estimate.to_dict()
+        if monte_carlo:
+            figures["monte_carlo"] = dict(monte_carlo[0].__dict__)
+        if free is not None:
+            figures["monte_carlo_design_gap"] = free.to_dict()
+        print(json.dumps({"report": str(path), **figures}))
+    else:
+        print(f"wrote {path} ({path.stat().st_size / 1e6:.1f} MB)")
+    return 0
+
+
+def _report_provenance(args):
+    """Where ``pounding report``'s case came from, and the command (every option written out) that made it.
+    A case file whose ``name`` is a preset's is reported as that preset, modified or not."""
+    import shlex
+
+    from pounding.case.case import read_case_file
+    from pounding.presets import preset_text
+    from pounding.report import ReportProvenance, case_provenance
+
+    command = shlex.join(["pounding", "report", args.case, "-o", args.output, "--units", args.units]
+                         + (["--records", str(args.records), "--seed", str(args.seed)] if args.records else [])
+                         + (["--design-gap", f"{args.design_gap:g}"] if args.design_gap is not None else []))
+    if preset_text(args.case) is not None:
+        return ReportProvenance(args.case, args.case, (), command)
+    data = read_case_file(args.case)
+    name = data.get("name")
+    if isinstance(name, str) and preset_text(name) is not None:
+        return case_provenance(data, name, source=args.case, command=command, units=args.units)
+    return ReportProvenance(args.case, None, (), command)
+
+
+def _fragility(args) -> int:
+    from pounding.cli.curves import run_fragility
+
+    return run_fragility(args)
+
+
+def _spectrum(args) -> int:
+    from pounding.cli.curves import run_spectrum
+
+    return run_spectrum(args)
+
+
+def _records(args) -> int:
+    from pounding.cli.hazard import records_command
+
+    return records_command(args)
+
+
+def _export(args) -> int:
+    from pounding.cli.export import export_command
+
+    return export_command(args)
+
+
+def _sweep(args) -> int:
+    from pounding.cli import sweep
+    from pounding.errors import CaseError
+
+    try:
+        return sweep.run(args)
+    except CaseError as error:  # the library names the folder output_dir; the user wrote -o
+        raise (CaseError("--output", error.message) if error.field == "output_dir" else error) from None
+
+
+_COMMANDS = {
+    "cases": _cases,
+    "estimate": _estimate,
+    "simulate": _simulate,
+    "validate": _validate,
+    "sweep": _sweep,
+    "report": _report,
+    "records": _records,
+    "fragility": _fragility,
+    "spectrum": _spectrum,
+    "export": _export,
+    "dashboard": _dashboard,
+}
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``pounding`` command."""
+
+    args = parser().parse_args(argv)
+    with warnings.catch_warnings():
+        # numpy's and scipy's floating-point notes are not messages for the user: a case they concern ends in one line.
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return _run(args)
+
+
+def _run(args) -> int:
+    """One command, its errors turned into one line and an exit code."""
+    from pounding.errors import CaseError, ConvergenceError, SimulationError
+    from pounding.output import describe_os_error
+
+    try:
+        status = _COMMANDS[args.command](args)
+        sys.stdout.flush()  # a full disk or a closed pipe on stdout shows here, not at exit
+        return status
+    except CaseError as error:
+        print(f"pounding {args.command}: error: {error}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except (ConvergenceError, SimulationError) as error:  # a case the methods cannot compute: one line, no traceback
+        print(f"pounding {args.command}: failed: {error}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print(f"pounding {args.command}: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        # The reader (e.g. `head`) left early; that is not an error of ours.
+        sys.stderr.close()
+        return 0
+    except OSError as error:  # a read-only folder, a full disk (a file or stdout): one line, no traceback
+        print(f"pounding {args.command}: error: {describe_os_error(error)}", file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

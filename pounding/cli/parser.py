@@ -1,0 +1,209 @@
+"""The arguments of the ``pounding`` command: its parser, subcommands and their options.
+
+Kept light: building it imports no numerical or plotting library.
+"""
+
+from __future__ import annotations
+
+import argparse
+from functools import lru_cache
+
+from pounding import defaults
+from pounding.cli.arguments import (
+    bounded_number,
+    capacity,
+    probability,
+    record_count,
+    tolerance,
+    whole_number,
+)
+
+__all__ = ["EXIT_BAD_INPUT", "parser"]
+
+EXIT_BAD_INPUT = 2
+
+_EPILOG = """examples:
+  pounding cases
+  pounding estimate section5-T2-0.4
+  pounding simulate section5-T2-0.4 --records 300 --seed 1
+  pounding simulate section5-T2-0.4 --design-gap 0.95 --records 1000
+  pounding validate --records 300
+  pounding sweep section5-T2-0.4 --vary contact.gap=0:5:11 --records 200 -o results/
+  pounding report section5-T2-0.4 -o report.html --records 300
+  pounding fragility section5-T2-0.4 --capacity 3e5 --pga 0.05:0.6:12 --records 100 -o fragility.html
+  pounding spectrum section5-T2-0.4 --period1 0.2:2:30 --period2 0.4 -o spectrum.html
+  pounding simulate my_case.toml --records 50 --json
+  pounding export opensees section5-T2-0.4 --records 20 --seed 1 -o opensees/
+  pounding dashboard --port 5006
+"""
+
+
+_positive_int = whole_number(1)
+_non_negative_int = whole_number(0)
+
+
+class _Parser(argparse.ArgumentParser):
+    """Bad arguments: one line naming the argument, exit code 2."""
+
+    def error(self, message: str):
+        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message}\n")
+
+
+@lru_cache(maxsize=1)  # built once per process: parsing does not change it
+def parser() -> argparse.ArgumentParser:
+    """The ``pounding`` command's argument parser."""
+    command = _Parser(
+        prog="pounding",
+        description="Expected extreme pounding force between two adjacent buildings under random earthquakes.",
+        epilog=_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    commands = command.add_subparsers(dest="command", required=True, parser_class=_Parser)
+
+    commands.add_parser(
+        "cases",
+        help="list the built-in cases",
+        description="List the built-in cases (presets) with their descriptions.",
+        epilog="example:\n  pounding cases",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+
+    simulate = commands.add_parser(
+        "simulate",
+        help="Monte Carlo time-history analysis (the 'exact' method)",
+        description="Nonlinear time-history analysis of the case over N seeded synthetic records (or each of its recorded motions once); "
+        "prints the mean extreme pounding force with its standard error and 95 % confidence interval, and beside it "
+        "the closed-form estimates with their error against this study and the accuracy measured in the estimate's regime.",
+        epilog="examples:\n  pounding simulate section5-T2-0.4 --records 300 --seed 1\n"
+        "  pounding simulate case.toml --records 20 --json > result.json\n"
+        "  pounding simulate section5-T2-0.4 --design-gap 0.95 --records 1000",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    simulate.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
+    simulate.add_argument("--records", type=record_count, default=None,
+                          help=f"number of records (default {defaults.RECORDS}; a case of recorded motions integrates each of them once)")
+    simulate.add_argument("--seed", type=_non_negative_int, default=None, help=f"seed of the study (default {defaults.SEED})")
+    simulate.add_argument("--tolerance", type=tolerance, default=defaults.INTEGRATOR_TOLERANCE,
+                          help=f"relative tolerance of the integrator (default {defaults.INTEGRATOR_TOLERANCE:g})")
+    simulate.add_argument("--capacity", type=capacity, metavar="F", default=None,
+                          help="a capacity F (N; kgf with --units kgf-cm-s): also the fraction of records whose F_max "
+                          "exceeds it, with its 95 %% interval")
+    simulate.add_argument("--units", choices=("SI", "kgf-cm-s"), default="SI",
+                          help="units of --capacity and of the forces printed: N (kN, MN) or kgf (default SI); --json is always SI")
+    simulate.add_argument("--json", action="store_true", help="print one JSON object (SI units) instead of a table")
+    simulate.add_argument("--design-gap", type=probability, metavar="P", default=None,
+                          help="instead, the gap for probability P of no pounding, in (0, 1): a record pounds at a gap "
+                          "exactly when its free relative displacement exceeds it, so the records' free motion gives it")
+
+    estimate = commands.add_parser(
+        "estimate",
+        help="closed-form expected extreme pounding force (both estimators)",
+        description="Expected extreme pounding force without time histories: this project's gap-aware estimator "
+        "and the paper's method (Rahimi & Soltani 2016, Eq. 12-30) side by side, with the pounding probability and "
+        "the gap needed for a target probability of no pounding.",
+        epilog="examples:\n  pounding estimate section5-T2-0.4\n  pounding estimate case.toml --json --target-probability 0.99",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    estimate.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
+    estimate.add_argument("--target-probability", type=probability, default=defaults.TARGET_PROBABILITY,
+                          help=f"target probability of no pounding during the record, in (0, 1) (default {defaults.TARGET_PROBABILITY:g})")
+    estimate.add_argument("--paper-variance", choices=("eq28", "exact"), default=defaults.PAPER_VARIANCE,
+                          help="the paper's method under an envelope: sigma_V(t) by Eq. 28 (default, as published) "
+                          "or by the exact time-varying covariance")
+    estimate.add_argument("--michaelov-n1", type=bounded_number(*defaults.MICHAELOV_N1_RANGE), default=defaults.MICHAELOV_N1, metavar="N1",
+                          help="the paper's method under an envelope: order n1 of the moments of Michaelov's equivalent "
+                          "stationary process, Eq. 29, in [{:g}, {:g}] (default {:g}, as the paper)".format(
+                              *defaults.MICHAELOV_N1_RANGE, defaults.MICHAELOV_N1))
+    estimate.add_argument("--capacity", type=capacity, metavar="F", default=None,
+                          help="a capacity F (N; kgf with --units kgf-cm-s): also the probability that F_max exceeds it")
+    estimate.add_argument("--units", choices=("SI", "kgf-cm-s"), default="SI",
+                          help="units of --capacity and of the forces printed: N (kN, MN) or kgf (default SI); --json is always SI")
+    estimate.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+
+    records = commands.add_parser(
+        "records",
+        help="write the ground-motion records simulate integrates (PEER .AT2 or CSV)",
+        description="Write exactly the records 'pounding simulate CASE --records N --seed S' integrates (synthetic, "
+        "or the case's recorded motions as scaled), one file per record with sorted names, acceleration in g.",
+        epilog="examples:\n  pounding records section5-T2-0.4 --records 20 --seed 1 -o motions/\n"
+        "  pounding records case.toml --records 5 -o motions/ --format csv",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    records.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
+    records.add_argument("--records", type=record_count, default=None, help="number of records (not for recorded motions: all are written)")
+    records.add_argument("--seed", type=_non_negative_int, default=None, help=f"seed of the study (default {defaults.SEED})")
+    records.add_argument("-o", "--output", required=True, help="folder to write them to (made if missing)")
+    records.add_argument("--format", choices=("at2", "csv"), default="at2", help="PEER NGA .AT2 (default) or two-column CSV (time s, acceleration g)")
+    records.add_argument("--json", action="store_true", help="print one JSON object naming the files")
+
+    validate = commands.add_parser(
+        "validate",
+        help="the paper's Tables 1, 2, 5, 6 against this project's Monte Carlo and estimators",
+        description="Recompute the paper's Tables 1, 2, 5 and 6: the paper's columns, this project's Monte Carlo "
+        "and both estimators, for the excitation as printed and with G0 x 4 pi^2; lists the assumptions made "
+        "where the paper is silent.",
+        epilog="examples:\n  pounding validate\n  pounding validate --records 100 --json > tables.json",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    validate.add_argument("--records", type=record_count, default=defaults.VALIDATION_RECORDS,
+                          help=f"Monte Carlo records per case (default {defaults.VALIDATION_RECORDS})")
+    validate.add_argument("--seed", type=_non_negative_int, default=defaults.VALIDATION_SEED,
+                          help=f"seed of the studies (default {defaults.VALIDATION_SEED})")
+    validate.add_argument("--grid", action="store_true",
+                          help="instead of the paper's tables: both estimators against Monte Carlo on the 33-case accuracy grid "
+                          "(a Markdown table)")
+    validate.add_argument("--json", action="store_true", help="print one JSON object (forces in N)")
+
+    report = commands.add_parser(
+        "report",
+        help="write a static, self-contained HTML report of a case",
+        description="One HTML file for a design note (all JS/CSS inline, opens offline, prints on A4): a summary "
+        "(E[F_max], its fractiles, the pounding probability, the gap needed and, with --records, the Monte Carlo "
+        "check), the inputs as a table (and what changed from the preset), numbered figures with captions, the "
+        "method and its measured accuracy; the version, date and this command. Written atomically.",
+        epilog="examples:\n  pounding report section5-T2-0.4 -o report.html\n"
+        "  pounding report case.toml -o case.html --records 300 --units kgf-cm-s\n"
+        "  pounding report section5-T2-0.4 -o report.html --records 300 --design-gap 0.95",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    report.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
+    report.add_argument("-o", "--output", required=True, help="the HTML file to write")
+    report.add_argument("--records", type=whole_number(0, defaults.MAX_RECORDS, "records"), default=0,
+                        help="Monte Carlo records to compare with (default 0: none)")
+    report.add_argument("--seed", type=_non_negative_int, default=defaults.REPORT_SEED,
+                        help=f"seed of the Monte Carlo study (default {defaults.REPORT_SEED})")
+    report.add_argument("--design-gap", type=float, metavar="P", default=None,
+                        help="also the Monte Carlo gap for probability P of no pounding, in (0, 1), from the free motion of "
+                        "the same --records (needed); P is then the target of the closed-form gap too")
+    report.add_argument("--units", choices=("SI", "kgf-cm-s"), default="SI", help="units shown in the report (default SI)")
+    report.add_argument("--json", action="store_true", help="print one JSON object: the file written and the figures in it (SI)")
+
+    from pounding.cli import curves, sweep  # light: dask, pandas and bokeh are imported when a sweep runs
+
+    curves.add_fragility(commands)
+    curves.add_spectrum(commands)
+
+    from pounding.cli.export import add_export  # light: the exporter loads when it runs
+
+    add_export(commands)
+
+    sweep.add_arguments(commands.add_parser(
+        "sweep",
+        help="parametric study on Dask: every combination estimated and simulated, resumable",
+        description=sweep.DESCRIPTION,
+        epilog=sweep.EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    ))
+
+    dashboard = commands.add_parser(
+        "dashboard",
+        help="serve the browser dashboard",
+        description="Serve the dashboard (Panel) on the given port.",
+        epilog="example:\n  pounding dashboard --port 5006 --show",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    from pounding.cli.serve import port_number  # light: the server is started by a child process
+    dashboard.add_argument("--port", type=port_number, default=5006, help="port in [0, 65535] (default 5006; 0 picks a free one)")
+    dashboard.add_argument("--show", action="store_true", help="open a browser tab")
+    dashboard.add_argument("--allow-websocket-origin", action="append", default=[], help="extra allowed websocket origin (host:port)")
+    return command

@@ -1,0 +1,33 @@
+"""Response spectra of records: the 5 %-damped pseudo-acceleration of an
+oscillator starting at rest, by pyrotd (MIT licence; its frequency-domain
+solution of the oscillator). The records are padded with zeros to at least
+twice their length, so that the frequency-domain (periodic) solution does not
+wrap a record's end onto its start: the oscillator then starts at rest."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pounding.errors import CaseError
+from pounding.units import STANDARD_GRAVITY
+
+__all__ = ["pseudo_acceleration_spectrum"]
+
+
+def pseudo_acceleration_spectrum(accelerations, time_step: float, periods, damping: float = 0.05) -> np.ndarray:
+    """Pseudo-spectral acceleration (2 pi / T)^2 max |u| [m/s^2] of each record (rows of
+    ``accelerations`` [m/s^2], sampled every ``time_step`` [s]) at ``periods`` [s]: shape (records, periods)."""
+    import pyrotd
+
+    records = np.atleast_2d(np.asarray(accelerations, dtype=float))
+    periods = np.asarray(periods, dtype=float)
+    if not (np.all(np.isfinite(periods)) and np.all(periods > 0)):
+        raise CaseError("periods", "must be finite and > 0 s")
+    if np.any(periods < 2.0 * 5 * time_step):  # pyrotd asks for the record's Nyquist 5 times the oscillator's frequency
+        raise CaseError("periods", f"must be at least 10 time steps ({10 * time_step:g} s) to be resolved by the records")
+    length = 1 << (2 * records.shape[1] - 1).bit_length()
+    padded = np.zeros((records.shape[0], length))
+    padded[:, : records.shape[1]] = records / STANDARD_GRAVITY
+    frequencies = 1.0 / periods
+    spectra = [pyrotd.calc_spec_accels(time_step, row, frequencies, osc_damping=damping).spec_accel for row in padded]
+    return np.asarray(spectra) * STANDARD_GRAVITY

@@ -1,0 +1,91 @@
+"""Where a case's ground motion comes from, when it is not a random process
+given by its parameters: a code design spectrum, or a suite of recorded
+accelerograms.
+
+A case always holds an :class:`~pounding.hazard.excitation.Excitation`, the random
+process the closed form takes. For a design spectrum it is the spectrum-
+compatible filter bank, and the Monte Carlo records are drawn from it too;
+for recorded motions it is the spectrum fitted to the suite, and the Monte
+Carlo integrates the records themselves (:class:`RecordedMotions`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from pounding.errors import CaseError, described
+
+if TYPE_CHECKING:  # loaded with the case forms that need them
+    from pounding.hazard.accelerograms import Accelerogram
+    from pounding.hazard.compatible_psd import CompatibleSpectrum
+    from pounding.hazard.motion_fit import FittedExcitation
+
+__all__ = ["DesignSpectrum", "RecordedMotions"]
+
+
+@dataclass(frozen=True, eq=False)
+class DesignSpectrum:
+    """A code's 5 %-damped design spectrum and the compatible PSD drawn from it.
+
+    Attributes
+    ----------
+    code : str
+        ``"ec8"``, ``"asce7-16"`` or ``"table"``, as the case file writes it.
+    target : object
+        The design spectrum (:mod:`pounding.hazard.design_spectra`): ``pseudo_acceleration(periods)`` [m/s^2].
+    compatible : CompatibleSpectrum
+        The filter bank whose records reproduce it (:mod:`pounding.hazard.compatible_psd`).
+    """
+
+    code: str
+    target: object
+    compatible: CompatibleSpectrum
+
+    def to_dict(self) -> dict:
+        """JSON-ready: the code, the control periods, the target and the random-vibration spectrum there (SI)."""
+        return {
+            "code": self.code,
+            "description": self.target.describe(),
+            "periods": np.asarray(self.compatible.periods).tolist(),
+            "target": np.asarray(self.compatible.target).tolist(),
+            "expected": np.asarray(self.compatible.expected).tolist(),
+            "units": {"periods": "s", "target": "m/s^2", "expected": "m/s^2"},
+        }
+
+
+@dataclass(frozen=True, eq=False)
+class RecordedMotions:
+    """A suite of recorded accelerograms, scaled as the case asks, and the spectrum fitted to it.
+
+    Attributes
+    ----------
+    records : tuple of Accelerogram
+        In the sorted order of the expanded file names; the Monte Carlo integrates each once.
+    fitted : FittedExcitation
+        The Kanai-Tajimi or Clough-Penzien spectrum the closed form takes.
+    scaling : str
+        How the records were scaled, in words (``"as recorded"``, ``"x 1.3"``, ``"each to a PGA of 0.3 g"``).
+    """
+
+    records: tuple[Accelerogram, ...]
+    fitted: FittedExcitation
+    scaling: str = "as recorded"
+
+    def __post_init__(self):
+        from pounding.hazard.accelerograms import Accelerogram
+
+        records = tuple(self.records)
+        if not records or not all(isinstance(r, Accelerogram) for r in records):
+            raise CaseError("excitation.records", f"must be a non-empty sequence of Accelerogram, got {described(self.records)}")
+        object.__setattr__(self, "records", records)
+
+    @property
+    def names(self) -> list[str]:
+        return [record.name for record in self.records]
+
+    def to_dict(self) -> dict:
+        """JSON-ready: the files, their scaling, and the fitted spectrum (SI)."""
+        return {"records": self.names, "scaling": self.scaling, "fitted_excitation": self.fitted.to_dict()}

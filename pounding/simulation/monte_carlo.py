@@ -1,0 +1,412 @@
+"""The "exact method": nonlinear time-history analysis of the two buildings,
+pounding included, over many seeded synthetic records (Monte Carlo; the
+left column of the paper's Fig. 4, Eq. 10-11).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import threading
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor, as_completed
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.special import (  # binomial CDF, Student t quantile; scipy.stats costs a second to import
+    bdtr,
+)
+
+from pounding import defaults
+from pounding.mechanics import integrator as kernel
+from pounding.case.case import Case
+from pounding.errors import (
+    CaseError,
+    check_limit,
+    check_probability,
+    described,
+    finite_number,
+    quote,
+)
+from pounding.simulation.ground_motion import (
+    check_suite_range,
+    ground_motion_batches,
+    record_names,
+    samples_per_record,
+    suite_size,
+)
+from pounding.simulation.result import SimulationResult
+from pounding.simulation.system import (
+    Cancelled,
+    Settings,
+    check_records,
+    check_study,
+    failure,
+    kernel_system,
+)
+
+__all__ = [
+    "Cancelled",
+    "DesignGap",
+    "Settings",
+    "SimulationResult",
+    "TimeHistory",
+    "design_gap",
+    "integrate",
+    "records_for_bound",
+    "simulate",
+    "simulate_record",
+]
+
+def simulate(
+    case: Case,
+    records: int | None = None,
+    seed: int = defaults.SEED,
+    settings: Settings | None = None,
+    progress: Callable[[int, int], None] | None = None,
+    cancel: threading.Event | None = None,
+    first_record: int = 0,
+) -> SimulationResult:
+    """Monte Carlo estimate of the extreme pounding force.
+
+    Records ``first_record .. first_record + records - 1`` of the study seeded
+    ``seed`` are generated (``excitation.record_rng``) and integrated on
+    ``settings.n_workers`` threads. A case of recorded motions integrates its
+    accelerograms (all of them by default, in the sorted order of their file
+    names); ``seed`` does not apply.
+
+    Parameters
+    ----------
+    case : Case, or a preset name or the path of a TOML file
+    records : int, optional
+        Number of records, at most ``defaults.MAX_RECORDS`` (1,000,000);
+        ``defaults.RECORDS`` (the whole suite of a recorded case) when None.
+    seed : int
+        Seed of the study; the same case and seed give the same numbers.
+    settings : Settings, optional
+    progress : callable, optional
+        Called as ``progress(done, total)`` after each chunk of records.
+    cancel : threading.Event, optional
+        When set, the study stops at the next chunk and raises :class:`Cancelled`.
+    first_record : int
+        Index of the first record.
+
+    Returns
+    -------
+    SimulationResult
+
+    Raises
+    ------
+    SimulationError
+        When a record's integration fails; names the record and the time.
+    """
+    case, settings = check_study(case, settings, progress, cancel)
+    if records is None:
+        records = suite_size(case) or defaults.RECORDS
+    records, seed, first_record = check_records(records, seed, first_record)
+    check_suite_range(case, records, first_record)
+    # the records of one chunk are held at once by a thread: checked before they are drawn
+    check_limit("chunk_size", min(settings.chunk_size, records) * samples_per_record(case), defaults.MAX_CHUNK_SAMPLES,
+                "samples held per thread (chunk_size x samples per record)", "lower Settings.chunk_size")
+    system = kernel_system(case, settings)
+    y0 = np.zeros(3 * system.n_floors)
+    indices = np.arange(first_record, first_record + records)
+    summaries = np.zeros((records, kernel.SUMMARY_COLUMNS))
+    chunks = [slice(start, min(start + settings.chunk_size, records)) for start in range(0, records, settings.chunk_size)]
+
+    def run(chunk: slice) -> slice:
+        if cancel is not None and cancel.is_set():
+            return chunk
+        rows = summaries[chunk]
+        for batch, accelerations, time_step in ground_motion_batches(case, seed, indices[chunk]):
+            kernel.integrate_batch(
+                accelerations, time_step, y0, system.floors, system.below, system.contact,
+                system.floor_1, system.floor_2, settings.tolerance, system.atol, settings.displacement_limit,
+                rows[batch],
+            )
+        return chunk
+
+    done = 0
+    with ThreadPoolExecutor(max_workers=min(settings.n_workers, len(chunks))) as pool:
+        futures = [pool.submit(run, chunk) for chunk in chunks]
+        try:
+            for future in as_completed(futures):
+                chunk = future.result()
+                if cancel is not None and cancel.is_set():
+                    raise Cancelled("simulation cancelled")
+                failed = np.flatnonzero(summaries[chunk, kernel.S_STATUS] != kernel.OK)
+                if failed.size:
+                    row = chunk.start + failed[0]
+                    raise failure(summaries[row], record_names(case, seed, [indices[row]])[0], settings)
+                done += chunk.stop - chunk.start
+                if progress is not None:
+                    progress(done, records)
+        except BaseException:
+            for future in futures:
+                future.cancel()
+            raise
+    return SimulationResult(
+        case=case,
+        seed=seed,
+        indices=indices,
+        force_max=summaries[:, kernel.S_FORCE_MAX].copy(),
+        impacts=summaries[:, kernel.S_IMPACTS].astype(np.int64),
+        penetration_max=summaries[:, kernel.S_PENETRATION_MAX].copy(),
+        impact_velocity_max=summaries[:, kernel.S_IMPACT_VELOCITY_MAX].copy(),
+        displacement_max=summaries[:, [kernel.S_DISPLACEMENT_MAX_1, kernel.S_DISPLACEMENT_MAX_2]].copy(),
+        relative_displacement_max=summaries[:, kernel.S_RELATIVE_MAX].copy(),
+        steps=summaries[:, kernel.S_STEPS].astype(np.int64),
+        settings=settings,
+    )
+
+
+@dataclass(frozen=True)
+class DesignGap:
+    """The gap for a target probability of no pounding, by Monte Carlo.
+
+    Until the first contact the buildings move freely, so a record pounds at
+    gap d exactly when its free relative displacement X = x1 - x2 at the
+    contact floors exceeds d: one simulation without contact gives the
+    pounding fraction at every gap.
+
+    Attributes
+    ----------
+    gap : float
+        Smallest gap at which at most 1 - ``target_probability`` of the
+        records pound: an order statistic of ``peaks`` [m].
+    upper_bound : float
+        One-sided 90 % confidence bound on the gap for the target
+        probability, from the binomial law of the order statistics [m];
+        inf when the records are too few to give one.
+    target_probability : float
+        Probability of no pounding [-].
+    peaks : ndarray
+        Each record's peak free relative displacement [m], in record order.
+    seed : int
+    """
+
+    gap: float
+    upper_bound: float
+    target_probability: float
+    peaks: np.ndarray
+    seed: int
+
+    @property
+    def n_records(self) -> int:
+        return self.peaks.size
+
+    @property
+    def records_for_bound(self) -> int:
+        """The fewest records that give :attr:`upper_bound` (:func:`records_for_bound`)."""
+        return records_for_bound(self.target_probability)
+
+    def pounding_fraction(self, gap: float) -> float:
+        """Fraction of the records that pound at ``gap`` [m]."""
+        return float(np.mean(self.peaks > gap))
+
+    def to_dict(self) -> dict:
+        """JSON-ready, SI units."""
+        return {
+            "design_gap": self.gap,
+            "design_gap_upper_bound_90": self.upper_bound if math.isfinite(self.upper_bound) else None,
+            "target_probability": self.target_probability,
+            "records": self.n_records,
+            "seed": self.seed,
+            "peaks": self.peaks.tolist(),
+            "units": {"length": "m"},
+        }
+
+
+def records_for_bound(target_probability: float) -> int:
+    """The fewest records whose free peaks give a one-sided 90 % confidence
+    bound on the gap for ``target_probability`` of no pounding: the largest of
+    N peaks bounds it with confidence 1 - p^N."""
+    check_probability(target_probability)
+    return math.ceil(math.log(0.1) / math.log(target_probability) - 1e-9)
+
+
+def design_gap(
+    case: Case,
+    target_probability: float = defaults.TARGET_PROBABILITY,
+    records: int = defaults.DESIGN_GAP_RECORDS,
+    seed: int = defaults.SEED,
+    settings: Settings | None = None,
+    progress: Callable[[int, int], None] | None = None,
+    cancel: threading.Event | None = None,
+) -> DesignGap:
+    """The gap giving ``target_probability`` of no pounding, from the free
+    motion of ``records`` simulated records (the case's gap is not used).
+
+    The records are those :func:`simulate` integrates for the same ``seed``;
+    at the gap returned, :func:`simulate` finds the same records pounding.
+    """
+    target_probability = check_probability(target_probability)
+    case, settings = check_study(case, settings, progress, cancel)
+    records, seed, _ = check_records(records, seed, 0)
+    free = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=2.0 * settings.displacement_limit))
+    result = simulate(free, records=records, seed=seed, settings=settings, progress=progress, cancel=cancel)
+    peaks = result.relative_displacement_max
+    ordered = np.sort(peaks)
+    rank = max(1, math.ceil(target_probability * records - 1e-9))  # at most records - rank pound at ordered[rank - 1]
+    # P(ordered[j - 1] >= true gap) = P(Binomial(records, p) <= j - 1); the first j where that reaches 0.9.
+    confident = np.flatnonzero(bdtr(np.arange(records), records, target_probability) >= 0.9)
+    upper = float(ordered[confident[0]]) if confident.size else math.inf
+    return DesignGap(float(ordered[rank - 1]), upper, float(target_probability), peaks, seed)
+
+
+@dataclass(frozen=True)
+class TimeHistory:
+    """The full response to one record, at every accepted integration step.
+
+    Attributes
+    ----------
+    time : ndarray
+        [s], non-uniform: the steps crowd into the impacts.
+    ground_acceleration : ndarray
+        [m/s^2] at ``time``.
+    displacement, velocity, hysteretic : ndarray, shape (steps, floors)
+        Floor displacements [m] and velocities [m/s] relative to the ground,
+        storey hysteretic displacements z [m]; floors of building 1 then 2.
+    contact_force : ndarray
+        Pounding force [N].
+    drift, storey_force : ndarray, shape (steps, floors)
+        Storey drifts [m] and restoring forces alpha k u + (1 - alpha) k z [N]
+        (Eq. 36), the hysteresis loops.
+    penetration : ndarray
+        delta = x1 - x2 - gap at the contact floors [m].
+    """
+
+    case: Case
+    time: np.ndarray
+    ground_acceleration: np.ndarray
+    displacement: np.ndarray
+    velocity: np.ndarray
+    hysteretic: np.ndarray
+    contact_force: np.ndarray
+    drift: np.ndarray
+    storey_force: np.ndarray
+    penetration: np.ndarray
+    summary: dict
+
+    def floor(self, building: int, level: int) -> int:
+        """Column of floor ``level`` (from 1) of ``building`` (1 or 2)."""
+        offset = 0 if building == 1 else self.case.buildings[0].n_storeys
+        return offset + level - 1
+
+
+def integrate(
+    case: Case,
+    ground_acceleration: np.ndarray,
+    time_step: float,
+    initial_state: np.ndarray | None = None,
+    settings: Settings | None = None,
+    label: str = "record",
+) -> TimeHistory:
+    """Integrate the case under a given ground-acceleration record.
+
+    Parameters
+    ----------
+    case : Case, or a preset name or the path of a TOML file
+        Its excitation is not used: ``ground_acceleration`` is.
+    ground_acceleration : ndarray
+        Samples at t = k * time_step [m/s^2].
+    time_step : float
+        [s]
+    initial_state : ndarray, optional
+        (d, v, z) of all floors; at rest by default.
+    label : str
+        Names the record in error messages.
+    """
+    case, settings = check_study(case, settings, None, None)
+    time_step = finite_number("time_step", time_step)
+    if not time_step > 0:
+        raise CaseError("time_step", f"must be > 0 s, got {quote(time_step)}")
+    try:
+        record = np.ascontiguousarray(ground_acceleration, dtype=float)
+    except (TypeError, ValueError):
+        raise CaseError("ground_acceleration", f"must be an array of numbers, got {described(ground_acceleration)}") from None
+    if record.ndim != 1 or record.size < 2:
+        raise CaseError("ground_acceleration", "must be a 1-D array of at least 2 samples")
+    check_limit("ground_acceleration", record.size, defaults.MAX_SAMPLES_PER_RECORD, "samples", "integrate a shorter record")
+    if not np.all(np.isfinite(record)):
+        raise CaseError("ground_acceleration", "must be finite numbers (no NaN or inf)")
+    return _integrate(case, record, time_step, initial_state, settings, str(label), "ground_acceleration")
+
+
+def _check_history(field: str, samples: int, n_state: int) -> int | None:
+    """The most steps a history of ``n_state`` states may keep (None: no limit). The
+    history is kept at every step, at least one per sample: MAX_HISTORY_VALUES bounds it."""
+    width = n_state + 2
+    check_limit(field, samples * width, defaults.MAX_HISTORY_VALUES, f"history values ({samples:,} samples x {width})",
+                "integrate a shorter record")
+    return defaults.MAX_HISTORY_VALUES // width if defaults.limits_enabled() else None
+
+
+def _integrate(case: Case, record: np.ndarray, time_step: float, initial_state, settings: Settings, label: str,
+               field: str) -> TimeHistory:
+    """:func:`integrate` on checked inputs; ``field`` names the record's length in a limit's message."""
+    system = kernel_system(case, settings)
+    n_state = 3 * system.n_floors
+    try:
+        y0 = np.zeros(n_state) if initial_state is None else np.array(initial_state, dtype=float)
+    except (TypeError, ValueError):
+        raise CaseError("initial_state", f"must be an array of numbers, got {described(initial_state)}") from None
+    if y0.shape != (n_state,) or not np.all(np.isfinite(y0)):
+        raise CaseError("initial_state", f"must be {n_state} finite numbers (d, v, z of every floor), got shape {y0.shape}")
+    most = _check_history(field, record.size, n_state)
+    summary = np.zeros(kernel.SUMMARY_COLUMNS)
+    capacity = 8 * record.size if most is None else min(8 * record.size, most)
+    while True:
+        time = np.empty(capacity)
+        state = np.empty((capacity, n_state))
+        force = np.empty(capacity)
+        stored = kernel.integrate_record(
+            record, time_step, y0, system.floors, system.below, system.contact, system.floor_1,
+            system.floor_2, settings.tolerance, system.atol, settings.displacement_limit, summary, time, state, force,
+        )
+        if summary[kernel.S_STATUS] != kernel.HISTORY_FULL:
+            break
+        if most is not None and capacity >= most:
+            raise CaseError(field, f"the time history takes more than {capacity:,} steps, beyond the {defaults.MAX_HISTORY_VALUES:,} values "
+                            f"kept; integrate a shorter record ({defaults.LIMITS_VARIABLE}=off lifts it)")
+        capacity = capacity * 4 if most is None else min(capacity * 4, most)
+    if summary[kernel.S_STATUS] != kernel.OK:
+        raise failure(summary, label, settings)
+    time, state, force = time[:stored], state[:stored], force[:stored]
+    n = system.n_floors
+    displacement, velocity, hysteretic = state[:, :n], state[:, n : 2 * n], state[:, 2 * n :]
+    below_displacement = np.where(system.below >= 0, displacement[:, np.maximum(system.below, 0)], 0.0)
+    drift = displacement - below_displacement
+    k, alpha = system.floors[:, kernel.STIFFNESS], system.floors[:, kernel.ALPHA]
+    samples = np.arange(record.size) * time_step
+    return TimeHistory(
+        case=case,
+        time=time,
+        ground_acceleration=np.interp(time, samples, record),
+        displacement=displacement,
+        velocity=velocity,
+        hysteretic=hysteretic,
+        contact_force=force,
+        drift=drift,
+        storey_force=alpha * k * drift + (1.0 - alpha) * k * hysteretic,
+        penetration=displacement[:, system.floor_1] - displacement[:, system.floor_2] - case.contact.gap,
+        summary={
+            "force_max": summary[kernel.S_FORCE_MAX],
+            "impacts": int(summary[kernel.S_IMPACTS]),
+            "penetration_max": summary[kernel.S_PENETRATION_MAX],
+            "impact_velocity_max": summary[kernel.S_IMPACT_VELOCITY_MAX],
+            "relative_displacement_max": summary[kernel.S_RELATIVE_MAX],
+            "steps": int(summary[kernel.S_STEPS]),
+        },
+    )
+
+
+def simulate_record(case: Case, seed: int = defaults.SEED, index: int = 0, settings: Settings | None = None) -> TimeHistory:
+    """Full time histories of record ``index`` of the study seeded ``seed``
+    (the same record ``simulate`` integrates under that index)."""
+    case, settings = check_study(case, settings, None, None)
+    _, seed, index = check_records(1, seed, index)
+    check_suite_range(case, 1, index)
+    _check_history("excitation.duration", samples_per_record(case), 3 * sum(b.n_storeys for b in case.buildings))
+    _, records, time_step = next(ground_motion_batches(case, seed, [index]))
+    return _integrate(case, records[0], time_step, None, settings, record_names(case, seed, [index])[0], "excitation.duration")

@@ -1,0 +1,112 @@
+"""The Monte Carlo side of a fragility curve or a force spectrum: every
+record's F_max at each adjusted case, on the sweep's engine (Dask, resumable,
+the same numbers whatever the workers), in a folder of the user's or a
+temporary one."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from pounding import defaults
+from pounding.case.case import as_case
+from pounding.errors import CaseError, quote
+from pounding.simulation.result import quantile_interval, wilson_interval
+
+__all__ = ["MonteCarloForces", "MonteCarloPlan"]
+
+
+@dataclass(frozen=True, eq=False)
+class MonteCarloForces:
+    """Every record's F_max [N] at each point of a fragility curve or a force spectrum, record i seeded alike at
+    every point (``seed``)."""
+
+    force_max: tuple[np.ndarray, ...]
+    seed: int
+
+    @property
+    def records(self) -> int:
+        return int(self.force_max[0].size)
+
+    @property
+    def force_mean(self) -> np.ndarray:
+        """E[F_max] at each point [N]."""
+        return np.array([float(np.mean(f)) for f in self.force_max])
+
+    def force_mean_interval(self) -> np.ndarray:
+        """95 % Student-t interval of each mean [N], shape (points, 2)."""
+        from scipy.special import stdtrit
+
+        half = float(stdtrit(self.records - 1, 0.975)) * np.array([np.std(f, ddof=1) for f in self.force_max]) / np.sqrt(self.records)
+        return np.column_stack([self.force_mean - half, self.force_mean + half])
+
+    def quantile(self, probability: float) -> tuple[np.ndarray, np.ndarray]:
+        """The empirical quantile [N] at each point, and its distribution-free 95 % interval, shape (points, 2)."""
+        rows = [quantile_interval(f, probability) for f in self.force_max]
+        return np.array([r[0] for r in rows]), np.array([[r[1], r[2]] for r in rows], dtype=float)
+
+    def exceeding(self, capacity: float) -> np.ndarray:
+        """Records with F_max > capacity [N] at each point."""
+        return np.array([int(np.sum(forces > capacity)) for forces in self.force_max])
+
+    def intervals(self, capacity: float) -> np.ndarray:
+        """Wilson's 95 % interval of the exceeding fraction at each point, shape (points, 2)."""
+        return np.array([wilson_interval(int(k), self.records) for k in self.exceeding(capacity)])
+
+
+@dataclass(frozen=True)
+class MonteCarloPlan:
+    """How the Monte Carlo side of a fragility curve or a force spectrum runs.
+
+    Attributes
+    ----------
+    records : int
+        Records at each point (a recorded case: the first ``records`` of its suite).
+    seed : int
+        Seed of the study: record i is seeded alike at every point.
+    work_dir : path, optional
+        Folder of the finished chunks (the sweep's files): rerun with it to resume. Default: a temporary
+        folder, removed at the end.
+    scheduler, workers
+        As :func:`pounding.sweep` (None: a local Dask cluster; ``"serial"``: in this process).
+    progress : callable, optional
+        ``progress(done, total)`` in records.
+    """
+
+    records: int
+    seed: int = defaults.SEED
+    work_dir: str | os.PathLike | None = None
+    scheduler: object = None
+    workers: int | None = None
+    progress: Callable[[int, int], None] | None = None
+
+    def check(self, minimum: int, why: str) -> None:
+        """:class:`CaseError` naming ``records`` unless it is a whole number >= ``minimum`` (``why`` says what for)."""
+        records = self.records
+        if isinstance(records, bool) or not isinstance(records, (int, np.integer)) or records < minimum:
+            raise CaseError("records", f"must be at least {minimum} {why}, got {quote(records)}")
+
+    def forces(self, case, adjustments: Sequence[Mapping], label: str) -> MonteCarloForces:
+        """Every record's F_max at each of ``adjustments`` of ``case`` (a preset name, a case file or the parsed
+        file; a loaded Case has no file for the workers to load): :func:`pounding.studies.sweeps.monte_carlo_forces`."""
+        from pounding.case.case import Case
+
+        if isinstance(case, Case):
+            raise CaseError("case", "the Monte Carlo runs on the case file: give a preset name, a path or the parsed file")
+        loaded = as_case(case)
+        if loaded.recorded and self.records > len(loaded.hazard.records):
+            raise CaseError("records", f"the case has {len(loaded.hazard.records)} recorded motions; give --records at most that")
+        from pounding.studies.sweeps import monte_carlo_forces
+
+        def run(folder):
+            return monte_carlo_forces(case, adjustments, self.records, self.seed, folder, self.scheduler, progress=self.progress,
+                                      workers=self.workers, label=label)
+
+        if self.work_dir is not None:
+            return MonteCarloForces(tuple(run(self.work_dir)), self.seed)
+        with tempfile.TemporaryDirectory(prefix="pounding-") as folder:
+            return MonteCarloForces(tuple(run(folder)), self.seed)
