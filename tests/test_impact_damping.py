@@ -15,7 +15,7 @@ from scipy.linalg import expm
 from pounding import load_case
 from pounding.closed_form.estimator import estimate
 from pounding.closed_form.gap_aware import gap_for_probability
-from pounding.closed_form.impact_damping import impact_damping
+from pounding.closed_form.impact_damping import impact_damping, jump_modes
 from pounding.closed_form.pair import LinearizedPair
 from pounding.closed_form.response import contact_output_matrix
 from pounding.mechanics.structures import BoucWen
@@ -31,7 +31,7 @@ CASES = {
 
 def _pair(case):
     pair = LinearizedPair.of(case)
-    return pair.buildings, pair.state_space, impact_damping(pair)
+    return pair.buildings, pair.state_space, pair.impact_damping
 
 
 def _floors(case):
@@ -194,3 +194,20 @@ def test_gap_curve_agrees_with_single_estimates():
         # the curve integrates on 81 speeds, the estimate on 121 (1e-4)
         assert force == pytest.approx(single.force_expected, rel=1e-3)
 
+
+
+def test_the_dashpot_takes_only_what_it_is_given():
+    """impact_damping reads nothing back from the pair: given the pair's pieces with e = 1 (elastic impacts, no
+    loss) it finds no dashpot and the free motion; with the pair's own e it finds the pair's dashpot."""
+    pair = LinearizedPair.of(load_case("section5-T2-0.8"))
+    response, case = pair.response_with_residual, pair.case
+    (_, r1), (_, r2) = pair.contact_floor_frfs
+    modes = jump_modes(pair.state_space, pair.buildings, pair.floors, case.contact_masses)
+    pieces = (response.sigma_relative_displacement, response.sigma_relative_velocity, pair.relative_displacement_psd,
+              pair.relative_displacement_moments, (r1, r2), pair.bandwidth, case.reduced_mass)
+    elastic = impact_damping(*pieces, 1.0, modes).damped([0.0, 0.01])
+    np.testing.assert_array_equal(elastic.dashpot, 0.0)
+    np.testing.assert_allclose(elastic.ratio_velocity, 1.0, rtol=1e-12)
+    lossy = impact_damping(*pieces, case.contact.restitution, modes).damped([0.0, 0.01])
+    np.testing.assert_array_equal(lossy.dashpot, pair.impact_damping.damped([0.0, 0.01]).dashpot)
+    assert np.all(lossy.dashpot > 0) and np.all(lossy.ratio_velocity < 1)

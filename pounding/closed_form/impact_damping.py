@@ -53,7 +53,7 @@ from pounding.random_vibration.crossing_kernels import (
 from pounding.errors import ConvergenceError
 from pounding.closed_form.response import spectral_grid, spectral_weights
 
-__all__ = ["DampedMotion", "ImpactDamping", "impact_damping"]
+__all__ = ["DampedMotion", "ImpactDamping", "impact_damping", "jump_modes"]
 
 
 @dataclass(frozen=True)
@@ -141,17 +141,19 @@ class ImpactDamping:
         return DampedMotion(*(np.ascontiguousarray(column) for column in out.T))
 
 
-def _jump_modes(pair) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def jump_modes(model, buildings, floors, contact_masses) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Eigenvalues of each building's free dynamics and the modal parts of X and V
     after a unit jump of V at the contact floors (floor velocities change by
-    -m2 / (m1 + m2) and +m1 / (m1 + m2): momentum kept)."""
-    m1, m2 = pair.case.contact_masses
-    model = pair.state_space
+    -m2 / (m1 + m2) and +m1 / (m1 + m2): momentum kept).
+
+    ``model`` is the linearized pair's state space (``StateSpace``), ``buildings`` its two linearized buildings,
+    ``floors`` their contact floors counted from 0, ``contact_masses`` (m1, m2) those floors' masses [kg]."""
+    m1, m2 = contact_masses
     jumps = (-m2 / (m1 + m2), m1 / (m1 + m2))
     signs = (1.0, -1.0)  # X = x1 - x2, V = v1 - v2
     rates, x_modes, v_modes = [], [], []
     start = 0
-    for b, (lb, floor) in enumerate(zip(pair.buildings, pair.floors)):
+    for b, (lb, floor) in enumerate(zip(buildings, floors)):
         states = slice(start, start + lb.n_states)
         start += lb.n_states
         matrix = model.matrix[states, states]
@@ -170,19 +172,39 @@ def _jump_modes(pair) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return np.concatenate(rates), np.concatenate(x_modes), np.concatenate(v_modes)
 
 
-def impact_damping(pair) -> ImpactDamping:
-    """The free motion's data for the impacts' dashpot of a
-    :class:`~pounding.closed_form.pair.LinearizedPair` (use its cached
-    :attr:`~pounding.closed_form.pair.LinearizedPair.impact_damping`): the free motion is
-    the pair's with the residual's response."""
-    response = pair.response_with_residual
+def impact_damping(sigma_relative_displacement: float, sigma_relative_velocity: float, relative_displacement_psd,
+                   relative_displacement_moments, receptances, bandwidth: float, reduced_mass: float, restitution: float,
+                   modes: tuple[np.ndarray, np.ndarray, np.ndarray]) -> ImpactDamping:
+    """The free motion's data for the impacts' dashpot (G10-G15). A
+    :class:`~pounding.closed_form.pair.LinearizedPair` gives it, computed once, as its
+    :attr:`~pounding.closed_form.pair.LinearizedPair.impact_damping`.
+
+    Parameters
+    ----------
+    sigma_relative_displacement, sigma_relative_velocity : float
+        sigma_X [m] and sigma_V [m/s] of the free motion, the residual's response included.
+    relative_displacement_psd : ndarray
+        One-sided PSD of X on the spectral grid [m^2 s/rad].
+    relative_displacement_moments : array_like
+        Its moments lambda_0, lambda_1, lambda_2.
+    receptances : (ndarray, ndarray)
+        Each contact floor's receptance R_b on the spectral grid [m/N].
+    bandwidth : float
+        Vanmarcke's q of the free X [-].
+    reduced_mass : float
+        m1 m2 / (m1 + m2) of the contact floors [kg].
+    restitution : float
+        e [-].
+    modes : tuple
+        :func:`jump_modes` of the pair.
+    """
     omega = spectral_grid()
-    (_, r1), (_, r2) = pair.contact_floor_frfs
-    psd = pair.relative_displacement_psd
+    r1, r2 = receptances
+    psd = relative_displacement_psd
     feedback = 1j * omega * (r1 + r2)
     # Trapezoid weights, explicit: the kernels sum the damped spectrum many times.
     weights = spectral_weights()
-    moments = [float(moment) for moment in pair.relative_displacement_moments]
+    moments = [float(moment) for moment in relative_displacement_moments]
     spectra = (
         weights,
         psd,
@@ -194,12 +216,12 @@ def impact_damping(pair) -> ImpactDamping:
         moments[2],
     )
     return ImpactDamping(
-        response.sigma_relative_displacement,
-        response.sigma_relative_velocity,
-        pair.case.reduced_mass,
-        pair.case.contact.restitution,
-        pair.bandwidth,
+        sigma_relative_displacement,
+        sigma_relative_velocity,
+        reduced_mass,
+        restitution,
+        bandwidth,
         spectra,
-        _jump_modes(pair),
+        modes,
         float(np.max(np.abs(feedback))),
     )

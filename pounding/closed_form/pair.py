@@ -18,7 +18,7 @@ from pounding.case.case import Case
 from pounding.closed_form.covariance_history import time_varying_covariance
 from pounding.random_vibration.crossing_kernels import vanmarcke_bandwidth
 from pounding.errors import CaseError, ConvergenceError
-from pounding.closed_form.impact_damping import ImpactDamping, impact_damping
+from pounding.closed_form.impact_damping import ImpactDamping, impact_damping, jump_modes
 from pounding.closed_form.linearization import (
     LinearizedBuilding,
     StateSpace,
@@ -260,7 +260,12 @@ class LinearizedPair:
     def impact_damping(self) -> ImpactDamping:
         """The free relative motion's spectrum and memory, from which the
         impacts' dashpot follows at any gap (:mod:`pounding.closed_form.impact_damping`)."""
-        return impact_damping(self)
+        response, case = self.response_with_residual, self.case
+        (_, r1), (_, r2) = self.contact_floor_frfs
+        modes = jump_modes(self.state_space, self.buildings, self.floors, case.contact_masses)
+        return impact_damping(response.sigma_relative_displacement, response.sigma_relative_velocity,
+                              self.relative_displacement_psd, self.relative_displacement_moments, (r1, r2), self.bandwidth,
+                              case.reduced_mass, case.contact.restitution, modes)
 
     @cached_property
     def floor_statistics(self) -> FloorStatistics:
