@@ -21,7 +21,7 @@ from pounding import Settings, estimate, load_case, simulate
 from pounding.case.scaling import PeakGroundAcceleration
 from pounding.studies.force_spectrum import force_spectrum
 from pounding.studies.fragility import fragility_curve
-from pounding.studies.monte_carlo_study import MonteCarloPlan
+from pounding.simulation.plan import MonteCarloPlan
 from pounding.units import STANDARD_GRAVITY
 from timing import median_seconds  # noqa: E402 (this folder is on the path)
 

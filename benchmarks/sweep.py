@@ -55,7 +55,8 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from pounding.presets import preset_text  # noqa: E402
-from pounding.studies.sweeps import CHUNK_RECORDS, chunk_sums, sweep  # noqa: E402
+from pounding import defaults  # noqa: E402
+from pounding.studies.sweeps import chunk_sums, sweep  # noqa: E402
 
 CASE = "section5-T2-0.4"
 GAPS = [0.5, 1.0, 1.5, 2.0]  # cm
@@ -78,7 +79,7 @@ def best_of(repeat: int, records: int, chunk_records: int, scheduler, folder: Pa
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--records", type=int, default=300, help="records per point (4 points)")
-    parser.add_argument("--chunk-records", type=int, default=CHUNK_RECORDS)
+    parser.add_argument("--chunk-records", type=int, default=defaults.CHUNK_RECORDS)
     parser.add_argument("--repeat", type=int, default=2, help="time the best of this many runs (default 2)")
     args = parser.parse_args()
     from distributed import Client, LocalCluster

@@ -135,7 +135,7 @@ class Studies(param.Parameterized):
         self._cancel, self._mc_gap = threading.Event(), case.contact.gap
         self.param.update(mc_running=True, mc_progress=0, mc_status=f"Monte Carlo: 0 of {records} records")
         self._submit(
-            partial(simulate, case, records, seed), self._cancel, self._progress,
+            partial(simulate, case, records=records, seed=seed), self._cancel, self._progress,
             lambda cancel, result, error: self._finished(cancel, result, error, key),
         )
 
@@ -197,7 +197,7 @@ class Studies(param.Parameterized):
             design_gap_running=True, design_gap_progress=0, design_gap_status=f"Monte Carlo design gap: 0 of {records} records (free motion)"
         )
         self._submit(
-            partial(design_gap, case, target, records, seed), self._design_gap_cancel, self._design_gap_progress,
+            partial(design_gap, case, target, records=records, seed=seed), self._design_gap_cancel, self._design_gap_progress,
             lambda cancel, result, error: self._design_gap_finished(cancel, result, error, key),
         )
 

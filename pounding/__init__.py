@@ -34,6 +34,7 @@ _EXPORTS = {
     "simulate": "simulation.monte_carlo",
     "simulate_record": "simulation.monte_carlo",
     "LinearizedPair": "closed_form.pair",
+    "MonteCarloPlan": "simulation.plan",
     "estimate": "closed_form.estimator",
     "force_versus_gap": "closed_form.estimator",
     "BoucWen": "mechanics.structures",

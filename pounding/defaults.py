@@ -36,6 +36,7 @@ __all__ = [
     "RECORDS",
     "REPORT_SEED",
     "SWEEP_RECORDS",
+    "CHUNK_RECORDS",
     "TARGET_PROBABILITY",
     "VALIDATION_RECORDS",
     "VALIDATION_SEED",
@@ -81,6 +82,9 @@ DESIGN_GAP_RECORDS = 400
 """Records of a Monte Carlo design gap (``design_gap``); 45 or more give the 90 % bound for 95 %."""
 SWEEP_RECORDS = 100
 """Records per point of a parametric study (``pounding sweep``)."""
+CHUNK_RECORDS = 100
+"""Records per task of a study on Dask (a sweep, a fragility curve, a force spectrum): about 0.4 s of work for 20 s
+records of two SDOF buildings, against a few milliseconds of overhead per task (``benchmarks/sweep.py``)."""
 VALIDATION_RECORDS = 300
 """Records per case of ``pounding validate`` and of the accuracy grid."""
 VALIDATION_SEED = 1

@@ -159,9 +159,7 @@ def test_the_samples_limit_is_checked_from_the_header(tmp_path, monkeypatch):
 
 
 def test_the_file_size_limit(tmp_path, monkeypatch):
-    import pounding.hazard.accelerograms as module
-
-    monkeypatch.setattr(module, "MAX_RECORD_FILE_BYTES", 100)
+    monkeypatch.setattr(defaults, "MAX_RECORD_FILE_BYTES", 100)
     path = _write(tmp_path, "a.csv", "t,a\n" + "".join(f"{k * 0.01:.2f},0.1\n" for k in range(40)))
     assert "bytes" in _error(read_accelerogram, path, name="a.csv").message
     monkeypatch.setenv(defaults.LIMITS_VARIABLE, "off")

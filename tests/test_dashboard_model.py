@@ -262,7 +262,7 @@ def test_design_gap_is_the_librarys_holds_at_any_gap_and_goes_with_a_building(mo
     model.run_design_gap()
     _wait_until(lambda: not model.design_gap_running)
     result = model.current_design_gap()
-    expected = design_gap(model.snapshot.case, 0.95, RECORDS, 3)
+    expected = design_gap(model.snapshot.case, 0.95, records=RECORDS, seed=3)
     assert (result.gap, result.seed) == (expected.gap, 3)
     model.gap = 2 * model.gap
     model.units = "kgf-cm-s"

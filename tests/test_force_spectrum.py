@@ -12,7 +12,7 @@ from pounding import load_case, simulate
 from pounding.case.scaling import with_fundamental_periods
 from pounding.cli.commands import main
 from pounding.studies.force_spectrum import force_spectrum
-from pounding.studies.monte_carlo_study import MonteCarloPlan
+from pounding.simulation.plan import MonteCarloPlan
 from pounding.studies.paper_tables import mdof_case
 
 SECTION5 = "section5-T2-0.4"

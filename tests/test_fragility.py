@@ -15,7 +15,7 @@ from pounding.case.scaling import PeakGroundAcceleration
 from pounding.cli.commands import main
 from pounding.hazard.excitation import ground_accelerations
 from pounding.studies.fragility import fit_lognormal, fragility_curve
-from pounding.studies.monte_carlo_study import MonteCarloPlan
+from pounding.simulation.plan import MonteCarloPlan
 from pounding.hazard.motion_fit import fit_excitation
 from pounding.random_vibration.peak_factors import expected_peak_ground_acceleration
 from pounding.presets import preset_text

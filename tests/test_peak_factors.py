@@ -9,7 +9,7 @@ from pounding import load_case
 from pounding.errors import CaseError
 from pounding.hazard.excitation import CloughPenzien, Excitation, ShinozukaSato, ground_accelerations
 from pounding.random_vibration.peak_factors import (
-    expected_peak,
+    vanmarcke_expected_peak,
     expected_peak_ground_acceleration,
     intensity_for_peak_ground_acceleration,
     rms_acceleration,
@@ -58,23 +58,23 @@ def test_rms_is_the_records_rms():
 def test_a_broad_band_stationary_peak_tends_to_davenports():
     # delta = 1: hardly any clumps at the levels of the peak; many crossings: Davenport's asymptote for rate 2 nu0.
     nu0, duration = 50.0, 2000.0
-    peak = expected_peak(np.ones(2), nu0, 1.0, [0.0, duration])
+    peak = vanmarcke_expected_peak(np.ones(2), nu0, 1.0, [0.0, duration])
     assert peak == pytest.approx(davenport_peak_factor(2 * nu0, duration), rel=0.005)
 
 
 def test_the_sampled_peak_tends_to_the_continuous_one_and_lies_below_it():
     nu0, duration = 5.0, 20.0
-    continuous = expected_peak(np.ones(2), nu0, 0.6, [0.0, duration])
+    continuous = vanmarcke_expected_peak(np.ones(2), nu0, 0.6, [0.0, duration])
     for step, tolerance in ((1e-4, 2e-3), (5e-3, 0.02)):
         rho = math.cos(2 * math.pi * nu0 * step)  # a narrow band at nu0: rho(dt) = cos(omega dt)
-        sampled = expected_peak(np.ones(2), nu0, 0.6, [0.0, duration], time_step=step, sample_correlation=rho)
+        sampled = vanmarcke_expected_peak(np.ones(2), nu0, 0.6, [0.0, duration], time_step=step, sample_correlation=rho)
         assert sampled < continuous
         assert sampled == pytest.approx(continuous, rel=tolerance)
 
 
 def test_vectorized_over_processes():
     sigma = np.array([[1.0, 1.0], [2.0, 2.0], [1.0, 1.0]])
-    peaks = expected_peak(sigma, [5.0, 5.0, 1.0], [0.5, 0.5, 0.5], [0.0, 10.0])
+    peaks = vanmarcke_expected_peak(sigma, [5.0, 5.0, 1.0], [0.5, 0.5, 0.5], [0.0, 10.0])
     assert peaks[1] == pytest.approx(2 * peaks[0])
     assert peaks[2] < peaks[0]  # fewer crossings, lower peak
 
@@ -93,7 +93,7 @@ def test_bad_input_names_its_field(kwargs, field):
     arguments.update(kwargs)
     sigma, nu0, delta, times = (arguments.pop(k) for k in ("sigma", "nu0", "delta", "times"))
     with pytest.raises(CaseError) as error:
-        expected_peak(sigma, nu0, delta, times, **arguments)
+        vanmarcke_expected_peak(sigma, nu0, delta, times, **arguments)
     assert error.value.field == field and len(str(error.value)) < 200
 
 

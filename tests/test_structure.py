@@ -186,3 +186,4 @@ def test_every_data_file_of_the_package_is_in_the_wheel():
             if p.is_file() and p.suffix not in (".py", ".pyc", ".nbi", ".nbc") and "__pycache__" not in p.parts]
     assert data and all(any(fnmatch.fnmatch(name, pattern) for pattern in patterns) for name in data)
 
+

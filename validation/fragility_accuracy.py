@@ -15,7 +15,7 @@ import numpy as np
 
 from pounding.studies.force_spectrum import force_spectrum
 from pounding.studies.fragility import fragility_curve
-from pounding.studies.monte_carlo_study import MonteCarloPlan
+from pounding.simulation.plan import MonteCarloPlan
 from pounding.units import STANDARD_GRAVITY
 
 RECORDS, SEED = 100, 5

@@ -12,14 +12,14 @@ import math
 
 from pounding import defaults
 
-__all__ = ["bounded_number", "increasing_values", "probability", "record_count", "study_size", "tolerance", "whole_number"]
+__all__ = ["bounded_number", "increasing_values", "probability", "record_count", "study_size", "tolerance", "whole_number_type"]
 
 
 def _shown(text: str) -> str:
     return repr(text if len(text) <= 40 else text[:37] + "...")
 
 
-def whole_number(minimum: int, maximum: int | None = None, limit: str | None = None):
+def whole_number_type(minimum: int, maximum: int | None = None, limit: str | None = None):
     """An argparse type: a whole number >= ``minimum`` (and <= ``maximum``).
 
     With ``limit`` (what is counted, e.g. ``"records"``) ``maximum`` is a
@@ -46,7 +46,7 @@ def whole_number(minimum: int, maximum: int | None = None, limit: str | None = N
     return parse
 
 
-record_count = whole_number(1, defaults.MAX_RECORDS, "records")
+record_count = whole_number_type(1, defaults.MAX_RECORDS, "records")
 """An argparse type: a number of records, 1 to :data:`~pounding.defaults.MAX_RECORDS`."""
 
 

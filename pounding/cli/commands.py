@@ -15,15 +15,7 @@ from functools import partial
 from pounding import defaults
 from pounding.cli.arguments import study_size
 from pounding.cli.parser import EXIT_BAD_INPUT, parser
-
-
-def _progress_bar(total: int, enabled: bool):
-    """A tqdm bar on stderr when it is a terminal; otherwise nothing."""
-    if not enabled:
-        return None
-    from tqdm import tqdm
-
-    return tqdm(total=total, unit="record", file=sys.stderr, dynamic_ncols=True)
+from pounding.cli.progress import progress_bar
 
 
 def _cases(_args) -> int:
@@ -61,22 +53,16 @@ def _simulate(args) -> int:
     from pounding.case.case import load_case
     from pounding.errors import ConvergenceError, check_probability
     from pounding.closed_form.estimator import estimate
-    from pounding.simulation.monte_carlo import Settings, design_gap, simulate
+    from pounding.simulation.monte_carlo import MonteCarloPlan, Settings, design_gap, simulate
 
     if args.design_gap is not None:
         check_probability(args.design_gap, "--design-gap")
     case = load_case(args.case)
     capacity = _capacity(args)
-    settings = Settings(tolerance=args.tolerance)
     records, seed = study_size(case, args)
-    bar = _progress_bar(records, sys.stderr.isatty())
     study = simulate if args.design_gap is None else partial(design_gap, target_probability=args.design_gap)
-    try:
-        result = study(case, records=records, seed=seed, settings=settings,
-                       progress=(lambda done, total: bar.update(done - bar.n)) if bar else None)
-    finally:
-        if bar is not None:
-            bar.close()
+    with progress_bar(records) as progress:
+        result = study(case, plan=MonteCarloPlan(records, seed, settings=Settings(tolerance=args.tolerance), progress=progress))
     try:  # a few ms beside seconds of simulation: the two methods side by side
         closed_form, failure = estimate(case, target_probability=args.design_gap or defaults.TARGET_PROBABILITY), None
     except (ConvergenceError, ValueError, ArithmeticError) as error:  # CaseError, LinAlgError, overflow: the MC stands
@@ -230,12 +216,8 @@ def _accuracy(args) -> int:
     from pounding.studies.paper_tables import accuracy, accuracy_cases
 
     cases = accuracy_cases()
-    bar = _progress_bar(len(cases), sys.stderr.isatty())
-    try:
-        rows = accuracy(cases, records=args.records, seed=args.seed, progress=(lambda done, total: bar.update(done - bar.n)) if bar else None)
-    finally:
-        if bar is not None:
-            bar.close()
+    with progress_bar(len(cases), unit="case") as progress:
+        rows = accuracy(cases, records=args.records, seed=args.seed, progress=progress)
     if args.json:
         print(json.dumps({"records": args.records, "seed": args.seed, "units": {"force": "N"},
                           "rows": [dict(row.__dict__, recommended_error=row.recommended_error, paper_error=row.paper_error) for row in rows]}))
@@ -271,12 +253,8 @@ def _validate(args) -> int:
     if args.grid:
         return _accuracy(args)
 
-    bar = _progress_bar(24, sys.stderr.isatty())
-    try:
-        rows = validate(records=args.records, seed=args.seed, progress=(lambda done, total: bar.update(done - bar.n)) if bar else None)
-    finally:
-        if bar is not None:
-            bar.close()
+    with progress_bar(24, unit="case") as progress:
+        rows = validate(records=args.records, seed=args.seed, progress=progress)
     if args.json:
         print(json.dumps({"records": args.records, "seed": args.seed, "rows": [row.to_dict() for row in rows],
                           "assumptions": list(ASSUMPTIONS), "readings_measured": READINGS_MEASURED, "units": {"force": "N"}}))
@@ -314,7 +292,7 @@ def _report(args) -> int:
     from pounding.case.case import load_case
     from pounding.errors import CaseError, check_probability
     from pounding.output import check_target
-    from pounding.simulation.monte_carlo import design_gap, simulate
+    from pounding.simulation.monte_carlo import MonteCarloPlan, design_gap, simulate
 
     if args.design_gap is not None:
         check_probability(args.design_gap, "--design-gap")
@@ -330,12 +308,8 @@ def _report(args) -> int:
     snapshot = compute_snapshot(case, target_probability=args.design_gap or defaults.TARGET_PROBABILITY)
 
     def run(study):
-        bar = _progress_bar(args.records, sys.stderr.isatty())
-        try:
-            return study(case, records=args.records, seed=args.seed, progress=(lambda done, total: bar.update(done - bar.n)) if bar else None)
-        finally:
-            if bar is not None:
-                bar.close()
+        with progress_bar(args.records) as progress:
+            return study(case, plan=MonteCarloPlan(args.records, args.seed, progress=progress))
 
     monte_carlo = (MonteCarloPoint.from_result(run(simulate)),) if args.records else ()
     free = run(partial(design_gap, target_probability=args.design_gap)) if args.design_gap is not None else None

@@ -7,10 +7,10 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 
 from pounding import defaults
-from pounding.cli.arguments import bounded_number, increasing_values, record_count, whole_number
+from pounding.cli.progress import progress_bar
+from pounding.cli.arguments import bounded_number, increasing_values, record_count, whole_number_type
 
 __all__ = ["add_fragility", "add_spectrum", "run_fragility", "run_spectrum"]
 
@@ -24,14 +24,14 @@ def _common(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--records", type=record_count, default=0,
                         help="also Monte Carlo, this many records a point (default: closed form only; recorded motions: "
                         "the first records of the suite)")
-    parser.add_argument("--seed", type=whole_number(0), default=defaults.SEED, help=f"seed of the Monte Carlo study (default {defaults.SEED})")
+    parser.add_argument("--seed", type=whole_number_type(0), default=defaults.SEED, help=f"seed of the Monte Carlo study (default {defaults.SEED})")
     parser.add_argument("--units", choices=("SI", "kgf-cm-s"), default="SI",
                         help="units of --capacity and of the forces printed and charted: N (kN) or kgf (default SI); --json is always SI")
     parser.add_argument("--work-dir", metavar="DIR", default=None,
                         help="folder of the finished Monte Carlo chunks: rerun with it to resume (default: a temporary folder)")
     parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
                         help="Dask scheduler address; default: a local cluster on this machine's cores; 'serial': in this process")
-    parser.add_argument("--workers", type=whole_number(1), default=None, help="worker processes of the local cluster (default: one per core)")
+    parser.add_argument("--workers", type=whole_number_type(1), default=None, help="worker processes of the local cluster (default: one per core)")
     parser.add_argument("-o", "--output", metavar="CHART", default=None, help="also write a self-contained HTML chart here")
     parser.add_argument("--json", action="store_true", help="print one JSON object (SI units, PGA in g)")
 
@@ -79,19 +79,9 @@ def add_spectrum(commands) -> None:
     _common(parser)
 
 
-def _progress(args, points: int):
-    """A tqdm bar on stderr when it is a terminal and Monte Carlo runs; else None."""
-    if not (args.records and sys.stderr.isatty()):
-        return None, None
-    from tqdm import tqdm
-
-    bar = tqdm(total=points * args.records, unit="record", file=sys.stderr, dynamic_ncols=True)
-    return bar, lambda done, total: bar.update(done - bar.n)
-
-
 def _plan(args, progress):
     """The Monte Carlo side the options ask for (none without --records)."""
-    from pounding.studies.monte_carlo_study import MonteCarloPlan
+    from pounding.simulation.plan import MonteCarloPlan
 
     if not args.records:
         return None
@@ -105,14 +95,12 @@ def _run(args, compute, chart, title: str):
 
     if args.output is not None:
         check_target(args.output, "--output", probe=True)
-    bar, progress = _progress(args, len(getattr(args, "pga", None) or args.period1))
-    try:
-        result = compute(progress)
-    except CaseError as error:
-        raise CaseError(_OPTIONS.get(error.field, error.field), error.message) from None
-    finally:
-        if bar is not None:
-            bar.close()
+    points = len(getattr(args, "pga", None) or args.period1)
+    with progress_bar(points * (args.records or 0), enabled=bool(args.records)) as progress:
+        try:
+            result = compute(progress)
+        except CaseError as error:
+            raise CaseError(_OPTIONS.get(error.field, error.field), error.message) from None
     if args.output is not None:
         from pounding.report.curve_charts import write_chart_page
 

@@ -7,7 +7,7 @@ import argparse
 import json
 
 from pounding import defaults
-from pounding.cli.arguments import record_count, study_size, whole_number
+from pounding.cli.arguments import record_count, study_size, whole_number_type
 
 __all__ = ["add_export", "export_command"]
 
@@ -40,7 +40,7 @@ def add_export(commands) -> None:
     opensees.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
     opensees.add_argument("--records", type=record_count, default=None,
                           help=f"number of records (default {defaults.RECORDS}; a case of recorded motions: all of them)")
-    opensees.add_argument("--seed", type=whole_number(0), default=None, help=f"seed of the study (default {defaults.SEED})")
+    opensees.add_argument("--seed", type=whole_number_type(0), default=None, help=f"seed of the study (default {defaults.SEED})")
     opensees.add_argument("-o", "--output", required=True, help="folder to write model.py and records/ to (made if missing)")
     opensees.add_argument("--json", action="store_true", help="print one JSON object naming what was written")
 

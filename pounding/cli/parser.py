@@ -15,7 +15,7 @@ from pounding.cli.arguments import (
     probability,
     record_count,
     tolerance,
-    whole_number,
+    whole_number_type,
 )
 
 __all__ = ["EXIT_BAD_INPUT", "parser"]
@@ -38,8 +38,8 @@ _EPILOG = """examples:
 """
 
 
-_positive_int = whole_number(1)
-_non_negative_int = whole_number(0)
+_positive_int = whole_number_type(1)
+_non_negative_int = whole_number_type(0)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -168,7 +168,7 @@ def parser() -> argparse.ArgumentParser:
     )
     report.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
     report.add_argument("-o", "--output", required=True, help="the HTML file to write")
-    report.add_argument("--records", type=whole_number(0, defaults.MAX_RECORDS, "records"), default=0,
+    report.add_argument("--records", type=whole_number_type(0, defaults.MAX_RECORDS, "records"), default=0,
                         help="Monte Carlo records to compare with (default 0: none)")
     report.add_argument("--seed", type=_non_negative_int, default=defaults.REPORT_SEED,
                         help=f"seed of the Monte Carlo study (default {defaults.REPORT_SEED})")

@@ -8,8 +8,9 @@ import math
 import sys
 
 from pounding import defaults
-from pounding.cli.arguments import record_count, whole_number
-from pounding.studies.sweeps.engine import CHUNK_RECORDS, SERIAL, TABLE_FORMATS, sweep
+from pounding.cli.progress import progress_bar
+from pounding.cli.arguments import record_count, whole_number_type
+from pounding.studies.sweeps.engine import SERIAL, TABLE_FORMATS, sweep
 from pounding.studies.sweeps.spec import normalized_vary
 
 DESCRIPTION = (
@@ -35,15 +36,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
 
     parser.add_argument("--records", type=record_count, default=defaults.SWEEP_RECORDS,
                         help=f"Monte Carlo records per point (default {defaults.SWEEP_RECORDS})")
-    parser.add_argument("--seed", type=whole_number(0), default=defaults.SEED, help=f"seed of the study (default {defaults.SEED})")
+    parser.add_argument("--seed", type=whole_number_type(0), default=defaults.SEED, help=f"seed of the study (default {defaults.SEED})")
     parser.add_argument("-o", "--output", required=True, metavar="DIR",
                         help="folder of the results and of the finished chunks (rerun with it to resume)")
     parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
                         help="Dask scheduler address (tcp://host:8786); default: a local cluster on this machine's cores; "
                         f"'{SERIAL}': in this process, without Dask")
-    parser.add_argument("--workers", type=whole_number(1), default=None, help="worker processes of the local cluster (default: one per core)")
-    parser.add_argument("--chunk-records", type=whole_number(1), default=CHUNK_RECORDS,
-                        help=f"records per Dask task (default {CHUNK_RECORDS})")
+    parser.add_argument("--workers", type=whole_number_type(1), default=None, help="worker processes of the local cluster (default: one per core)")
+    parser.add_argument("--chunk-records", type=whole_number_type(1), default=defaults.CHUNK_RECORDS,
+                        help=f"records per Dask task (default {defaults.CHUNK_RECORDS})")
     parser.add_argument("--format", choices=TABLE_FORMATS, default="csv", help="format of the table (default csv; parquet needs pyarrow)")
     parser.add_argument("--no-chart", action="store_true", help="do not write the design chart sweep.html")
     parser.add_argument("--json", action="store_true", help="print one JSON object (forces in N, lengths in m)")
@@ -64,29 +65,17 @@ def run(args: argparse.Namespace) -> int:
     Returns 0. Raises :class:`CaseError` on bad input (the CLI prints it on one
     line and exits 2); on Ctrl-C, says how to resume and re-raises.
     """
+    from pounding.simulation.plan import MonteCarloPlan
+
     vary = normalized_vary(args.vary)
-    bar = None
-    if sys.stderr.isatty():
-        from tqdm import tqdm
-
-        bar = tqdm(unit="record", file=sys.stderr, dynamic_ncols=True)
-
-    def progress(done: int, total: int) -> None:
-        bar.total = total
-        bar.update(done - bar.n)
-
     try:
-        table = sweep(
-            args.case, dict(vary), records=args.records, seed=args.seed, output_dir=args.output, scheduler=args.scheduler,
-            chunk_records=args.chunk_records, progress=progress if bar is not None else None, workers=args.workers,
-            table_format=args.format, chart=not args.no_chart,
-        )
+        with progress_bar() as progress:
+            plan = MonteCarloPlan(args.records, args.seed, scheduler=args.scheduler, workers=args.workers,
+                                  progress=progress, chunk_records=args.chunk_records)
+            table = sweep(args.case, dict(vary), plan, args.output, table_format=args.format, chart=not args.no_chart)
     except KeyboardInterrupt:
         print(f"pounding sweep: finished chunks are kept in {args.output}; rerun the same command to resume", file=sys.stderr)
         raise
-    finally:
-        if bar is not None:
-            bar.close()
     paths = [path for path, _ in vary]
     if args.json:
         rows = [{key: _json_value(value) for key, value in row.items()} for row in table.to_dict(orient="records")]

@@ -35,10 +35,10 @@ from pounding.mechanics.contact import Contact, impact_peak_force
 from pounding.random_vibration.crossing_kernels import U_MAX, approach_intensity, merged_instants, required_gap
 from pounding.errors import ConvergenceError
 from pounding.closed_form.impact_damping import DampedMotion, ImpactDamping
+from pounding.random_vibration.peak_factors import VANMARCKE_CLUMP_EXPONENT
 from pounding.random_vibration.peaks import VANMARCKE_DOUBLE_BARRIER
 
 __all__ = [
-    "CLUMP_EXPONENT",
     "Crossings",
     "expected_force_maximum",
     "expected_maximum",
@@ -46,10 +46,8 @@ __all__ = [
     "opposing_forces",
 ]
 
-CLUMP_EXPONENT = 1.2
-"""Vanmarcke's exponent of the bandwidth in the clump constant sqrt(pi / 2) q^1.2 (G7). The impacts cross one
-barrier, the gap, yet are counted with Vanmarcke's double-barrier constant sqrt(pi / 2): chosen by looking at
-Monte Carlo results, where the one-sided sqrt(2 pi) put the elastic pairs further off (docs/theory.md)."""
+# The clump constant of G7 is Vanmarcke's sqrt(pi / 2) q^1.2: the impacts cross one barrier, the gap, yet are counted
+# with his double-barrier constant, chosen by looking at Monte Carlo results (peaks.VANMARCKE_DOUBLE_BARRIER).
 _MERGE_TOLERANCE = 1e-4  # instants whose sigmas agree to this are one (the built-up stationary part)
 
 
@@ -101,7 +99,7 @@ class Crossings:
         probability: the first impact meets the free motion."""
         gaps = np.ascontiguousarray(gaps, dtype=float).ravel()
         ones = np.ones(gaps.size)
-        clumping = VANMARCKE_DOUBLE_BARRIER * self.bandwidth**CLUMP_EXPONENT
+        clumping = VANMARCKE_DOUBLE_BARRIER * self.bandwidth**VANMARCKE_CLUMP_EXPONENT
         return self._kernel(gaps, velocities, np.full(gaps.size, clumping), ones, ones)
 
     def damped(self, gaps) -> DampedMotion:
@@ -113,7 +111,7 @@ class Crossings:
         """Lambda(gap, v) of the impacting motion, ``motion`` from :meth:`damped`
         at the same gaps: the count of the largest approach speed."""
         gaps = np.ascontiguousarray(gaps, dtype=float).ravel()
-        clumping = VANMARCKE_DOUBLE_BARRIER * motion.bandwidth**CLUMP_EXPONENT
+        clumping = VANMARCKE_DOUBLE_BARRIER * motion.bandwidth**VANMARCKE_CLUMP_EXPONENT
         return self._kernel(gaps, velocities, clumping, motion.ratio_displacement, motion.ratio_velocity)
 
     def _kernel(self, gaps, velocities, clumping, scale_x, scale_v) -> np.ndarray:

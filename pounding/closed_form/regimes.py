@@ -21,6 +21,7 @@ from importlib import resources
 
 from pounding.mechanics.contact import undamped_peak_force
 from pounding.hazard.excitation import CloughPenzien
+from pounding.units import STANDARD_GRAVITY
 
 __all__ = [
     "CUTOFF_SHARE_LIMIT",
@@ -68,8 +69,6 @@ the Section 5 pair with softer contacts the estimate was +34 % to +630 % off bey
 FORCE_WEIGHT_LIMIT = 1000.0
 """Force over the lighter colliding floor's weight beyond which an estimate warns [-]: the measured cases and
 the presets reach 24, and no building takes a thousand times a floor's weight."""
-STANDARD_GRAVITY = 9.80665
-"""[m/s^2]"""
 
 
 def accuracy_regime(gap: float, sigma_x: float, residual_share: float, bandwidth: float) -> str:
@@ -190,6 +189,11 @@ def _required_gap_warning(pair, spectrum: str, yielding: bool, target_probabilit
             f"{100 * measured['max']:.0f} % of records pounded. Use `pounding simulate --design-gap {target_probability:.8g}`.")
 
 
+def _span(entry: dict) -> str:
+    """A measured range of errors as the warnings print it: ``-19 % to +13 %``."""
+    return f"{100 * entry['low']:+,.0f} % to {100 * entry['high']:+,.0f} %"
+
+
 def extreme_warnings(pair, force: float, paper_force: float | None, velocity: float, sigma_x: float) -> tuple[str, ...]:
     """The warnings of an estimate on a :class:`~pounding.closed_form.pair.LinearizedPair` whose inputs lie beyond what it
     was measured on: records cut below the motion's own frequencies, a contact too soft for short impacts, a
@@ -197,17 +201,18 @@ def extreme_warnings(pair, force: float, paper_force: float | None, velocity: fl
     speed [m/s], ``sigma_x`` [m] with the residual's response."""
     case, warnings = pair.case, []
     share = float(pair.cutoff_shares[5])  # of the linearized sigma_V^2, which loses more than sigma_X^2 (w^2 G_X)
+    measured = accuracy_data()["extreme_inputs"]
     if share > CUTOFF_SHARE_LIMIT:
+        above, below = _span(measured["cutoff_above_frequencies"]), _span(measured["cutoff_below_frequencies"])
         warnings.append(f"The records stop at {case.excitation.cutoff_frequency:.3g} rad/s, removing {100 * share:.0f} % of "
-                        "sigma_V^2. Cut there too, it was -19 % to +13 % off, +43 % to +7,900 % far below the "
-                        f"buildings' frequencies. {_CHECK}")
+                        f"sigma_V^2. Cut there too, it was {above} off, {below} far below the buildings' frequencies. {_CHECK}")
     contact = case.contact
     if velocity > 0.0:
         impact = float(undamped_peak_force(contact, velocity, case.reduced_mass))
         penetration = (impact / contact.stiffness) ** (1.0 / contact.stiffness_exponent) / sigma_x
         if penetration > SOFT_CONTACT_LIMIT:
             warnings.append(f"The contact is soft: the largest impact would penetrate {penetration:.2g} sigma_X, no short "
-                            f"shock as assumed; measured +34 % to +630 % off beyond 1, more if softer. {_CHECK}")
+                            f"shock as assumed; measured {_span(measured['soft_contact'])} off beyond 1, more if softer. {_CHECK}")
     weight = min(case.contact_masses) * STANDARD_GRAVITY
     largest = max(force, paper_force or 0.0)
     if largest > FORCE_WEIGHT_LIMIT * weight:

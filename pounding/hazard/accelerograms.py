@@ -33,7 +33,6 @@ from pounding.units import STANDARD_GRAVITY
 
 __all__ = [
     "G",
-    "MAX_RECORD_FILE_BYTES",
     "SUFFIXES",
     "Accelerogram",
     "expand_records",
@@ -45,7 +44,6 @@ __all__ = [
 
 G = STANDARD_GRAVITY
 """Standard gravity [m/s^2]: the unit g of the files."""
-MAX_RECORD_FILE_BYTES = defaults.MAX_RECORD_FILE_BYTES
 SUFFIXES = (".at2", ".csv", ".txt", ".dat")
 """The file suffixes read (any case): PEER .AT2, or two-column text."""
 
@@ -130,10 +128,10 @@ def _text(path: Path, name: str) -> str:
         raise CaseError(name, f"{what}; give an accelerogram file ({', '.join(SUFFIXES)})")
     try:
         with path.open("rb") as stream:
-            data = stream.read(MAX_RECORD_FILE_BYTES + 1 if defaults.limits_enabled() else -1)
+            data = stream.read(defaults.MAX_RECORD_FILE_BYTES + 1 if defaults.limits_enabled() else -1)
     except OSError as error:
         raise CaseError(name, f"cannot read it: {error.strerror or error}") from None
-    check_limit(name, len(data), MAX_RECORD_FILE_BYTES, "bytes or more in the accelerogram file", "split or resample the record")
+    check_limit(name, len(data), defaults.MAX_RECORD_FILE_BYTES, "bytes or more in the accelerogram file", "split or resample the record")
     if b"\x00" in data:
         offset = data.index(b"\x00")
         raise CaseError(name, f"a binary file (NUL byte at offset {offset}); an accelerogram is a text file")

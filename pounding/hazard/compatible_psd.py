@@ -14,8 +14,8 @@ C2  Its variance builds up from rest as d sigma^2/dt = 2 xi w_n (A(t)^2 lambda_0
 C3  Sa(T) = w_n^2 E[max |x|] by Vanmarcke's clumped crossings (P3-P4) with the envelope's
     growth sigma' / sigma = 2 xi w_n (A^2 lambda_0 - sigma^2) / (2 sigma^2) (P7), over the
     record (the peak within the record, as a time-domain analysis of the record finds it), with the
-    exponent of delta in the clump factor CLUMP_EXPONENT = 1.1 in place of Vanmarcke's 1.2 (fitted:
-    see CLUMP_EXPONENT).
+    exponent of delta in the clump factor COMPATIBLE_CLUMP_EXPONENT = 1.1 in place of Vanmarcke's 1.2 (fitted:
+    see COMPATIBLE_CLUMP_EXPONENT).
 C4  Starting PSD, Cacciola, Colajanni & Muscolino (2004), Eq. 26 there (Vanmarcke 1976):
         G(w_i) = 4 xi / (w_i pi - 4 xi w_(i-1)) (Sa(w_i)^2 / eta_i^2 - int_0^(w_(i-1)) G d omega),
     eta_i = sqrt(2 ln(2 N_i (1 - exp(-delta^1.2 sqrt(pi ln(2 N_i)))))), N_i = T_s w_i / (2 pi (-ln 0.5)),
@@ -49,7 +49,7 @@ from scipy.optimize import nnls
 from pounding.errors import CaseError, finite_number, quote, whole_number
 from pounding.hazard.excitation import Excitation, ShinozukaSato
 from pounding.hazard.filter_bank import COMPONENTS_MAX, FilterBank
-from pounding.random_vibration.peak_factors import expected_peak
+from pounding.random_vibration.peak_factors import vanmarcke_expected_peak
 
 __all__ = [
     "BANK_COMPONENTS",
@@ -76,7 +76,7 @@ TIME_POINTS = 61
 """Instants of C2-C3 over the record (C2 is exact at them; 61 are within 0.01 % of 121 on Sa)."""
 CONTROL_PERIODS = tuple(float(t) for t in np.geomspace(0.05, 5.0, 31))
 """Periods matched by C6 [s]: 0.05 s (the shortest a 0.005 s record resolves with 10 samples a cycle) to 5 s."""
-CLUMP_EXPONENT = 1.1
+COMPATIBLE_CLUMP_EXPONENT = 1.1
 """Exponent of delta in Vanmarcke's clump factor for C3 (P3 of pounding.random_vibration.peak_factors). Fitted: chosen by
 looking at Monte Carlo on 400 records each of three compatible banks and the paper's Kanai-Tajimi (10 and 20 s,
 pyrotd spectra at 0.15-2.5 s): Vanmarcke's 1.2 puts the expected Sa 2-5 % below the records' mean where the
@@ -121,7 +121,7 @@ def _rvt(omega, weights, periods, duration, envelope, damping):
     with np.errstate(divide="ignore", invalid="ignore"):
         growth = np.where(ratio > 0, decay[:, None] * (modulation_squared - ratio) / (2.0 * ratio), 0.0)
     sigma = np.sqrt(ratio * lambda_0[:, None])
-    return wn**2 * expected_peak(sigma, nu0, delta, times, growth=growth, clump_exponent=CLUMP_EXPONENT)
+    return wn**2 * vanmarcke_expected_peak(sigma, nu0, delta, times, growth=growth, clump_exponent=COMPATIBLE_CLUMP_EXPONENT)
 
 
 def _grid(cutoff_frequency):

@@ -52,14 +52,14 @@ from pounding.random_vibration.peaks import VANMARCKE_DOUBLE_BARRIER
 
 __all__ = [
     "SpectralMoments",
-    "expected_peak",
+    "vanmarcke_expected_peak",
     "expected_peak_ground_acceleration",
     "intensity_for_peak_ground_acceleration",
     "rms_acceleration",
-    "spectral_moments",
+    "record_spectral_moments",
 ]
 
-CLUMP_EXPONENT = 1.2
+VANMARCKE_CLUMP_EXPONENT = 1.2
 """Vanmarcke's (1975) exponent of delta in P3 (his delta_e = delta^1.2; pounding.random_vibration.crossing_kernels uses it too)."""
 
 LEVELS = 40
@@ -83,8 +83,8 @@ def _clumps(r: np.ndarray, clumping: np.ndarray) -> np.ndarray:
     return np.minimum(1.0, ratio)
 
 
-def expected_peak(sigma, nu0, delta, times, *, growth=None, time_step=None, sample_correlation=None,
-                  clump_exponent=CLUMP_EXPONENT) -> np.ndarray:
+def vanmarcke_expected_peak(sigma, nu0, delta, times, *, growth=None, time_step=None, sample_correlation=None,
+                  clump_exponent=VANMARCKE_CLUMP_EXPONENT) -> np.ndarray:
     """Expected largest |x| over ``times`` of zero-mean Gaussian processes, P3-P4 (P5 when sampled, P7 with ``growth``).
 
     Parameters
@@ -183,7 +183,7 @@ class SpectralMoments:
         return math.sqrt(max(1.0 - self.lambda_1 ** 2 / (self.lambda_0 * self.lambda_2), 1e-12))
 
 
-def spectral_moments(excitation) -> SpectralMoments:
+def record_spectral_moments(excitation) -> SpectralMoments:
     """P1 of the records of ``excitation`` (a :class:`~pounding.hazard.excitation.Excitation`), summed
     on their synthesis grid up to the cutoff, and the correlation of consecutive samples."""
     omega = excitation.synthesis_frequencies()
@@ -199,13 +199,13 @@ def spectral_moments(excitation) -> SpectralMoments:
 
 def rms_acceleration(excitation) -> float:
     """sqrt(lambda_0) [m/s^2]: the stationary records' rms (a modulated record's at A = 1)."""
-    return math.sqrt(spectral_moments(excitation).lambda_0)
+    return math.sqrt(record_spectral_moments(excitation).lambda_0)
 
 
 def expected_peak_ground_acceleration(excitation, sampled: bool = True) -> float:
     """E[PGA] of the records of ``excitation`` [m/s^2], P6: the largest |sample| (P5), or of
     the continuous process when ``sampled`` is False (P4)."""
-    moments = spectral_moments(excitation)
+    moments = record_spectral_moments(excitation)
     if excitation.envelope is None:
         times = np.array([0.0, excitation.times()[-1]])
         modulation = np.ones(2)
@@ -216,7 +216,7 @@ def expected_peak_ground_acceleration(excitation, sampled: bool = True) -> float
     with np.errstate(divide="ignore", invalid="ignore"):
         growth = np.where(modulation > 0, np.gradient(modulation, times) / modulation, 0.0)  # A'/A, P7
     extra = {"time_step": excitation.time_step, "sample_correlation": moments.rho} if sampled else {}
-    return float(expected_peak(sigma, moments.nu0, moments.delta, times, growth=growth, **extra))
+    return float(vanmarcke_expected_peak(sigma, moments.nu0, moments.delta, times, growth=growth, **extra))
 
 
 def intensity_for_peak_ground_acceleration(excitation, pga) -> float:

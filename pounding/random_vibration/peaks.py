@@ -24,7 +24,7 @@ __all__ = [
     "envelope_variance",
     "equivalent_stationary",
     "expected_absolute_peak",
-    "expected_peak",
+    "davenport_expected_peak",
     "merged_instants",
     "michaelov_variance",
     "vanmarcke_clumps",
@@ -77,7 +77,7 @@ def davenport_peak_factor(rate, duration):
     return float(factor) if factor.ndim == 0 else factor
 
 
-def expected_peak(sigma, rate, duration):
+def davenport_expected_peak(sigma, rate, duration):
     """Expected largest peak sigma * davenport_peak_factor(rate, duration)
     (Eq. 23, and Eq. 30 with the equivalent sigma and duration), in the units
     of ``sigma``."""

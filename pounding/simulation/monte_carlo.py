@@ -7,8 +7,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import threading
-from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass
 
@@ -19,7 +17,7 @@ from scipy.special import (  # binomial CDF, Student t quantile; scipy.stats cos
 
 from pounding import defaults
 from pounding.mechanics import integrator as kernel
-from pounding.case.case import Case
+from pounding.case.case import Case, as_case
 from pounding.errors import (
     CaseError,
     check_limit,
@@ -35,6 +33,7 @@ from pounding.simulation.ground_motion import (
     samples_per_record,
     suite_size,
 )
+from pounding.simulation.plan import MonteCarloPlan, as_plan
 from pounding.simulation.result import SimulationResult
 from pounding.simulation.system import (
     Cancelled,
@@ -48,6 +47,7 @@ from pounding.simulation.system import (
 __all__ = [
     "Cancelled",
     "DesignGap",
+    "MonteCarloPlan",
     "Settings",
     "SimulationResult",
     "TimeHistory",
@@ -58,15 +58,7 @@ __all__ = [
     "simulate_record",
 ]
 
-def simulate(
-    case: Case,
-    records: int | None = None,
-    seed: int = defaults.SEED,
-    settings: Settings | None = None,
-    progress: Callable[[int, int], None] | None = None,
-    cancel: threading.Event | None = None,
-    first_record: int = 0,
-) -> SimulationResult:
+def simulate(case: Case, plan: MonteCarloPlan | None = None, **options) -> SimulationResult:
     """Monte Carlo estimate of the extreme pounding force.
 
     Records ``first_record .. first_record + records - 1`` of the study seeded
@@ -78,18 +70,13 @@ def simulate(
     Parameters
     ----------
     case : Case, or a preset name or the path of a TOML file
-    records : int, optional
-        Number of records, at most ``defaults.MAX_RECORDS`` (1,000,000);
-        ``defaults.RECORDS`` (the whole suite of a recorded case) when None.
-    seed : int
-        Seed of the study; the same case and seed give the same numbers.
-    settings : Settings, optional
-    progress : callable, optional
-        Called as ``progress(done, total)`` after each chunk of records.
-    cancel : threading.Event, optional
-        When set, the study stops at the next chunk and raises :class:`Cancelled`.
-    first_record : int
-        Index of the first record.
+    plan : MonteCarloPlan, optional
+        How the study runs: ``records`` (``defaults.RECORDS``, or the whole suite of a recorded case, when
+        None; at most ``defaults.MAX_RECORDS``), ``seed``, ``first_record``, ``settings``, ``progress``
+        (called as ``progress(done, total)`` after each chunk of records) and ``cancel`` (when set, the study
+        stops at the next chunk and raises :class:`Cancelled`).
+    **options
+        Fields of the plan given one by one: ``simulate(case, records=200, seed=1)``.
 
     Returns
     -------
@@ -100,10 +87,11 @@ def simulate(
     SimulationError
         When a record's integration fails; names the record and the time.
     """
-    case, settings = check_study(case, settings, progress, cancel)
-    if records is None:
-        records = suite_size(case) or defaults.RECORDS
-    records, seed, first_record = check_records(records, seed, first_record)
+    plan = as_plan(plan, options)
+    case = as_case(case)
+    plan = plan.with_records(suite_size(case) or defaults.RECORDS)
+    records, seed, first_record, settings = plan.records, plan.seed, plan.first_record, plan.settings
+    progress, cancel = plan.progress, plan.cancel
     check_suite_range(case, records, first_record)
     # the records of one chunk are held at once by a thread: checked before they are drawn
     check_limit("chunk_size", min(settings.chunk_size, records) * samples_per_record(case), defaults.MAX_CHUNK_SAMPLES,
@@ -225,26 +213,21 @@ def records_for_bound(target_probability: float) -> int:
     return math.ceil(math.log(0.1) / math.log(target_probability) - 1e-9)
 
 
-def design_gap(
-    case: Case,
-    target_probability: float = defaults.TARGET_PROBABILITY,
-    records: int = defaults.DESIGN_GAP_RECORDS,
-    seed: int = defaults.SEED,
-    settings: Settings | None = None,
-    progress: Callable[[int, int], None] | None = None,
-    cancel: threading.Event | None = None,
-) -> DesignGap:
+def design_gap(case: Case, target_probability: float = defaults.TARGET_PROBABILITY, plan: MonteCarloPlan | None = None,
+               **options) -> DesignGap:
     """The gap giving ``target_probability`` of no pounding, from the free
-    motion of ``records`` simulated records (the case's gap is not used).
+    motion of the plan's records (``defaults.DESIGN_GAP_RECORDS`` when it names none; the case's gap is not
+    used). ``plan`` and ``**options`` as :func:`simulate`'s, from record 0.
 
     The records are those :func:`simulate` integrates for the same ``seed``;
     at the gap returned, :func:`simulate` finds the same records pounding.
     """
     target_probability = check_probability(target_probability)
-    case, settings = check_study(case, settings, progress, cancel)
-    records, seed, _ = check_records(records, seed, 0)
+    plan = as_plan(plan, options).with_records(defaults.DESIGN_GAP_RECORDS)
+    case = as_case(case)
+    records, seed, settings = plan.records, plan.seed, plan.settings
     free = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=2.0 * settings.displacement_limit))
-    result = simulate(free, records=records, seed=seed, settings=settings, progress=progress, cancel=cancel)
+    result = simulate(free, dataclasses.replace(plan, first_record=0))
     peaks = result.relative_displacement_max
     ordered = np.sort(peaks)
     rank = max(1, math.ceil(target_probability * records - 1e-9))  # at most records - rank pound at ordered[rank - 1]

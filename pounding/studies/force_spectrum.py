@@ -18,7 +18,8 @@ from pounding.case.scaling import with_fundamental_periods
 from pounding.errors import CaseError, ConvergenceError, finite_number, quote
 from pounding.blas import single_blas_thread
 from pounding.studies.fragility import check_intensities
-from pounding.studies.monte_carlo_study import MonteCarloForces, MonteCarloPlan
+from pounding.simulation.plan import MonteCarloPlan
+from pounding.studies.monte_carlo_study import MonteCarloForces, check_plan_records, monte_carlo_forces_at
 
 __all__ = ["ForceSpectrum", "force_spectrum"]
 
@@ -98,7 +99,7 @@ def force_spectrum(case, period1, period_ratio: float | None = None, period2: fl
     period1 = check_intensities(period1, "period1")
     periods2 = _periods_of_building_2(period1, period_ratio, period2)
     if monte_carlo is not None:
-        monte_carlo.check(defaults.SPECTRUM_MIN_RECORDS, "for an interval of the 84th percentile")
+        check_plan_records(monte_carlo, defaults.SPECTRUM_MIN_RECORDS, "for an interval of the 84th percentile")
     base = case if isinstance(case, Case) else as_case(case)
     distributions = []
     with single_blas_thread():
@@ -116,4 +117,4 @@ def force_spectrum(case, period1, period_ratio: float | None = None, period2: fl
     if monte_carlo is None:
         return spectrum
     adjustments = [{"period1": float(t1), "period2": float(t2)} for t1, t2 in zip(period1, periods2)]
-    return dataclasses.replace(spectrum, monte_carlo=monte_carlo.forces(case, adjustments, "force spectrum"))
+    return dataclasses.replace(spectrum, monte_carlo=monte_carlo_forces_at(monte_carlo, case, adjustments, "force spectrum"))

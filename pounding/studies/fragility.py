@@ -19,7 +19,8 @@ from pounding.case.scaling import PeakGroundAcceleration
 from pounding.errors import CaseError, ConvergenceError, check_limit, finite_number, quote
 from pounding.closed_form.force_distribution import force_distribution_of
 from pounding.blas import single_blas_thread
-from pounding.studies.monte_carlo_study import MonteCarloForces, MonteCarloPlan
+from pounding.simulation.plan import MonteCarloPlan
+from pounding.studies.monte_carlo_study import MonteCarloForces, check_plan_records, monte_carlo_forces_at
 from pounding.units import STANDARD_GRAVITY
 
 __all__ = ["FragilityCurve", "LognormalFragility", "check_intensities", "fit_lognormal", "fragility_curve"]
@@ -196,7 +197,7 @@ def fragility_curve(case, capacity: float, pga, monte_carlo: MonteCarloPlan | No
         raise CaseError("capacity", f"must be > 0 N, got {quote(capacity)}")
     pga = check_intensities(pga)
     if monte_carlo is not None:
-        monte_carlo.check(defaults.FRAGILITY_MIN_RECORDS, "for a useful interval")
+        check_plan_records(monte_carlo, defaults.FRAGILITY_MIN_RECORDS, "for a useful interval")
     base = as_case(case) if not isinstance(case, Case) else case
     scaling = PeakGroundAcceleration(base)
     distributions = []
@@ -215,6 +216,6 @@ def fragility_curve(case, capacity: float, pga, monte_carlo: MonteCarloPlan | No
     )
     if monte_carlo is None:
         return curve
-    counts = monte_carlo.forces(case, [{"pga": float(a)} for a in pga], "fragility")
+    counts = monte_carlo_forces_at(monte_carlo, case, [{"pga": float(a)} for a in pga], "fragility")
     return dataclasses.replace(curve, monte_carlo=counts,
                                lognormal_monte_carlo=fit_lognormal(pga, counts.exceeding(capacity), counts.records))

@@ -1,23 +1,22 @@
 """The Monte Carlo side of a fragility curve or a force spectrum: every
 record's F_max at each adjusted case, on the sweep's engine (Dask, resumable,
-the same numbers whatever the workers), in a folder of the user's or a
-temporary one."""
+the same numbers whatever the workers), run as a :class:`~pounding.simulation.plan.MonteCarloPlan` says, in
+its folder or a temporary one."""
 
 from __future__ import annotations
 
-import os
 import tempfile
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
-from pounding import defaults
 from pounding.case.case import as_case
 from pounding.errors import CaseError, quote
+from pounding.simulation.plan import MonteCarloPlan
 from pounding.simulation.result import quantile_interval, wilson_interval
 
-__all__ = ["MonteCarloForces", "MonteCarloPlan"]
+__all__ = ["MonteCarloForces", "check_plan_records", "monte_carlo_forces_at"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -58,55 +57,27 @@ class MonteCarloForces:
         return np.array([wilson_interval(int(k), self.records) for k in self.exceeding(capacity)])
 
 
-@dataclass(frozen=True)
-class MonteCarloPlan:
-    """How the Monte Carlo side of a fragility curve or a force spectrum runs.
+def check_plan_records(plan: MonteCarloPlan, minimum: int, why: str) -> None:
+    """:class:`CaseError` naming ``records`` unless the plan names at least ``minimum`` records (``why`` says what
+    for)."""
+    if plan.records is None or plan.records < minimum:
+        raise CaseError("records", f"must be at least {minimum} {why}, got {quote(plan.records)}")
 
-    Attributes
-    ----------
-    records : int
-        Records at each point (a recorded case: the first ``records`` of its suite).
-    seed : int
-        Seed of the study: record i is seeded alike at every point.
-    work_dir : path, optional
-        Folder of the finished chunks (the sweep's files): rerun with it to resume. Default: a temporary
-        folder, removed at the end.
-    scheduler, workers
-        As :func:`pounding.sweep` (None: a local Dask cluster; ``"serial"``: in this process).
-    progress : callable, optional
-        ``progress(done, total)`` in records.
-    """
 
-    records: int
-    seed: int = defaults.SEED
-    work_dir: str | os.PathLike | None = None
-    scheduler: object = None
-    workers: int | None = None
-    progress: Callable[[int, int], None] | None = None
+def monte_carlo_forces_at(plan: MonteCarloPlan, case, adjustments: Sequence[Mapping], label: str) -> MonteCarloForces:
+    """Every record's F_max at each of ``adjustments`` of ``case`` (a preset name, a case file or the parsed
+    file; a loaded Case has no file for the workers to load), on the sweep's engine as ``plan`` says, in its
+    ``work_dir`` (resumable) or a temporary folder: :func:`pounding.studies.sweeps.monte_carlo_forces`."""
+    from pounding.case.case import Case
 
-    def check(self, minimum: int, why: str) -> None:
-        """:class:`CaseError` naming ``records`` unless it is a whole number >= ``minimum`` (``why`` says what for)."""
-        records = self.records
-        if isinstance(records, bool) or not isinstance(records, (int, np.integer)) or records < minimum:
-            raise CaseError("records", f"must be at least {minimum} {why}, got {quote(records)}")
+    if isinstance(case, Case):
+        raise CaseError("case", "the Monte Carlo runs on the case file: give a preset name, a path or the parsed file")
+    loaded = as_case(case)
+    if loaded.recorded and plan.records > len(loaded.hazard.records):
+        raise CaseError("records", f"the case has {len(loaded.hazard.records)} recorded motions; give --records at most that")
+    from pounding.studies.sweeps import monte_carlo_forces
 
-    def forces(self, case, adjustments: Sequence[Mapping], label: str) -> MonteCarloForces:
-        """Every record's F_max at each of ``adjustments`` of ``case`` (a preset name, a case file or the parsed
-        file; a loaded Case has no file for the workers to load): :func:`pounding.studies.sweeps.monte_carlo_forces`."""
-        from pounding.case.case import Case
-
-        if isinstance(case, Case):
-            raise CaseError("case", "the Monte Carlo runs on the case file: give a preset name, a path or the parsed file")
-        loaded = as_case(case)
-        if loaded.recorded and self.records > len(loaded.hazard.records):
-            raise CaseError("records", f"the case has {len(loaded.hazard.records)} recorded motions; give --records at most that")
-        from pounding.studies.sweeps import monte_carlo_forces
-
-        def run(folder):
-            return monte_carlo_forces(case, adjustments, self.records, self.seed, folder, self.scheduler, progress=self.progress,
-                                      workers=self.workers, label=label)
-
-        if self.work_dir is not None:
-            return MonteCarloForces(tuple(run(self.work_dir)), self.seed)
-        with tempfile.TemporaryDirectory(prefix="pounding-") as folder:
-            return MonteCarloForces(tuple(run(folder)), self.seed)
+    if plan.work_dir is not None:
+        return MonteCarloForces(tuple(monte_carlo_forces(case, adjustments, plan, plan.work_dir, label=label)), plan.seed)
+    with tempfile.TemporaryDirectory(prefix="pounding-") as folder:
+        return MonteCarloForces(tuple(monte_carlo_forces(case, adjustments, plan, folder, label=label)), plan.seed)

@@ -45,7 +45,6 @@ record's F_max at adjusted cases for fragility curves and force spectra), :mod:`
 
 from pounding.studies.sweeps.chart import write_chart
 from pounding.studies.sweeps.engine import (
-    CHUNK_RECORDS,
     SERIAL,
     TABLE_FORMATS,
     SweepInterrupted,
@@ -54,11 +53,9 @@ from pounding.studies.sweeps.engine import (
 )
 from pounding.studies.sweeps.table import monte_carlo_summary
 from pounding.studies.sweeps.spec import parse_values, parse_vary
-from pounding.studies.sweeps.work import DEFAULT_TOLERANCE, chunk_sums, point_estimate
+from pounding.studies.sweeps.work import chunk_sums, point_estimate
 
 __all__ = [
-    "CHUNK_RECORDS",
-    "DEFAULT_TOLERANCE",
     "SERIAL",
     "TABLE_FORMATS",
     "SweepInterrupted",

@@ -14,17 +14,14 @@ import numpy as np
 from pounding import defaults
 from pounding.errors import CaseError
 from pounding.output import check_folder, check_target
+from pounding.simulation.plan import MonteCarloPlan, as_plan
 from pounding.studies.sweeps.chart import write_chart
 from pounding.studies.sweeps.points import Point, adjusted_points, case_data, sweep_points
 from pounding.studies.sweeps.spec import normalized_vary
 from pounding.studies.sweeps.store import FIELD, Store, write_json
 from pounding.studies.sweeps.table import need_parquet, table as summary_table, write_table
-from pounding.studies.sweeps.work import DEFAULT_TOLERANCE, chunk_sums, point_estimate, warm
+from pounding.studies.sweeps.work import chunk_sums, point_estimate, warm
 
-CHUNK_RECORDS = 100
-"""Default records per chunk: about 0.4 s of work for 20 s records of two
-SDOF buildings, against a few milliseconds of overhead per chunk
-(``benchmarks/sweep.py``)."""
 
 TABLE_FORMATS = ("csv", "parquet")
 SERIAL = "serial"
@@ -179,10 +176,9 @@ def _within_budget(tasks: list[_Task], max_chunks: int) -> list[_Task]:
     return kept
 
 
-def _compute(tasks: list[_Task], store: Store, scheduler, workers, seed: int, tolerance: float,
-             progress: Callable[[int, int], None] | None, done: int, total: int) -> int:
-    """Run ``tasks``, saving each result as it arrives; returns the chunks computed."""
-    computed = 0
+def _compute(tasks: list[_Task], store: Store, plan: MonteCarloPlan, done: int, total: int) -> int:
+    """Run ``tasks`` as ``plan`` says, saving each result as it arrives; returns the chunks computed."""
+    computed, progress = 0, plan.progress
     if progress is not None:
         progress(done, total)
 
@@ -198,31 +194,23 @@ def _compute(tasks: list[_Task], store: Store, scheduler, workers, seed: int, to
             progress(done, total)
 
     if tasks:
-        client = _Client(scheduler, workers)
+        client = _Client(plan.scheduler, plan.workers)
         try:
             if client.client is not None:
                 client.client.run(warm, tasks[0].point.data, tasks[0].point.adjustment)
-            _run_tasks(tasks, client.client, seed, tolerance, finished)
+            _run_tasks(tasks, client.client, plan.seed, plan.settings.tolerance, finished)
         finally:
             client.close()
     return computed
 
 
-def _check_sizes(records, seed, chunk_records, workers, max_chunks, tolerance) -> None:
-    _check_whole("records", records, 1)
-    _check_whole("seed", seed, 0)
-    _check_whole("chunk_records", chunk_records, 1)
-    if workers is not None:
-        _check_whole("workers", workers, 1)
+def _check_budget(max_chunks) -> None:
     if max_chunks is not None:
         _check_whole("max_chunks", max_chunks, 0)
-    from pounding.simulation.monte_carlo import Settings
-
-    Settings(tolerance=tolerance)  # validates it
 
 
-def _run_points(points: list[Point], chunks, store: Store, scheduler, workers, seed: int, tolerance: float,
-                progress, max_chunks: int | None, estimates: bool) -> tuple[int, int]:
+def _run_points(points: list[Point], chunks, store: Store, plan: MonteCarloPlan, max_chunks: int | None,
+                estimates: bool) -> tuple[int, int]:
     """Compute every missing chunk (and, with ``estimates``, closed-form figures) of ``points``; returns the
     chunks computed and those found done. :class:`SweepInterrupted` once ``max_chunks`` are computed."""
     tasks, reused = _missing(points, chunks, store, estimates)
@@ -231,7 +219,7 @@ def _run_points(points: list[Point], chunks, store: Store, scheduler, workers, s
         tasks = _within_budget(tasks, max_chunks)
     records = sum(count for _, count in chunks)
     found = records * len(points) - sum(task.count for task in tasks if task.is_chunk)
-    computed = _compute(tasks, store, scheduler, workers, seed, tolerance, progress, found, records * len(points))
+    computed = _compute(tasks, store, plan, found, records * len(points))
     if computed < missing:
         raise SweepInterrupted(
             f"stopped after {computed} chunk(s), {missing - computed} still missing; rerun to resume", computed, missing - computed
@@ -239,30 +227,21 @@ def _run_points(points: list[Point], chunks, store: Store, scheduler, workers, s
     return computed, reused
 
 
-def monte_carlo_forces(
-    case,
-    adjustments: Sequence[Mapping],
-    records: int,
-    seed: int = defaults.SEED,
-    output_dir: str | os.PathLike = "study",
-    scheduler=None,
-    chunk_records: int = CHUNK_RECORDS,
-    progress: Callable[[int, int], None] | None = None,
-    *,
-    workers: int | None = None,
-    tolerance: float = DEFAULT_TOLERANCE,
-    max_chunks: int | None = None,
-    label: str = "study",
-) -> list[np.ndarray]:
+def monte_carlo_forces(case, adjustments: Sequence[Mapping], plan: MonteCarloPlan, output_dir: str | os.PathLike = "study",
+                       *, max_chunks: int | None = None, label: str = "study") -> list[np.ndarray]:
     """Every record's F_max [N] at each adjusted case (:func:`pounding.case.scaling.adjusted`: another PGA, other
     periods), on the sweep's engine: the same chunks, Dask, resumable files in ``output_dir`` and numbers that
     do not depend on the workers or the chunking (record i of a point is seeded as in :func:`pounding.simulate`).
 
     ``case`` is a preset name, a TOML case file or a parsed case file (dict); ``adjustments`` one mapping per
-    point; ``label`` names the study in ``output_dir``'s manifest. Returns one array per point, in record order.
-    Raises as :func:`sweep` does; an adjustment that makes the case invalid names its key.
+    point; ``plan`` how the Monte Carlo runs (its ``records`` are required); ``label`` names the study in
+    ``output_dir``'s manifest. Returns one array per point, in record order. Raises as :func:`sweep` does; an
+    adjustment that makes the case invalid names its key.
     """
-    _check_sizes(records, seed, chunk_records, workers, max_chunks, tolerance)
+    if plan.records is None:
+        raise CaseError("records", "must be given for a study of many points")
+    _check_budget(max_chunks)
+    records, seed, chunk_records, tolerance = plan.records, plan.seed, plan.chunk_records, plan.settings.tolerance
     data, name = case_data(case)
     points = adjusted_points(data, name, adjustments, seed, tolerance)
     check_folder(output_dir, FIELD)
@@ -274,7 +253,7 @@ def monte_carlo_forces(
     for point in points:
         store.write_point(point, [])
     chunks = _chunks(records, chunk_records)
-    _run_points(points, chunks, store, scheduler, workers, seed, tolerance, progress, max_chunks, estimates=False)
+    _run_points(points, chunks, store, plan, max_chunks, estimates=False)
     return [np.concatenate([np.asarray(store.chunk(point, first, count)["force_max_values"], dtype=float)
                             for first, count in chunks]) for point in points]
 
@@ -282,18 +261,13 @@ def monte_carlo_forces(
 def sweep(
     case,
     vary: Mapping[str, Sequence[float] | str] | Iterable[str] | None,
-    records: int = defaults.SWEEP_RECORDS,
-    seed: int = defaults.SEED,
+    plan: MonteCarloPlan | None = None,
     output_dir: str | os.PathLike = "sweep",
-    scheduler=None,
-    chunk_records: int = CHUNK_RECORDS,
-    progress: Callable[[int, int], None] | None = None,
     *,
-    workers: int | None = None,
-    tolerance: float = DEFAULT_TOLERANCE,
     table_format: str = "csv",
     chart: bool = True,
     max_chunks: int | None = None,
+    **options,
 ):
     """Closed form and Monte Carlo at every combination of the varied keys, resumable.
 
@@ -308,29 +282,18 @@ def sweep(
         ``"buildings.2.storeys.1.period"``; buildings and storeys counted from
         1); values are in the case's units. Points are all combinations, the
         last path varying fastest. Empty or None: the case alone.
-    records : int
-        Monte Carlo records per point.
-    seed : int
-        Seed of the study; records are seeded one by one, so the numbers do
-        not depend on ``chunk_records``, workers or scheduler.
+    plan : MonteCarloPlan, optional
+        How the Monte Carlo runs: ``records`` per point (``defaults.SWEEP_RECORDS`` when None); ``seed``
+        (records are seeded one by one, so the numbers do not depend on ``chunk_records``, workers or
+        scheduler); ``scheduler`` (None: a local Dask cluster of ``workers`` processes, default one per core,
+        started and stopped here; an address ``"tcp://host:8786"``: that cluster; a ``distributed.Client``:
+        used as is, not closed; ``"serial"``: everything in this process, without Dask); ``chunk_records``
+        (records per Dask task); ``progress(done, total)`` in records, after each chunk (chunks found on disk
+        count as done from the start); ``settings.tolerance`` (the integrator's relative tolerance).
     output_dir : str or path
         Folder of the finished chunks, the table and the chart (made if missing).
         Rerunning with the same folder computes only what is missing; temporary
         files left there by a killed run are removed.
-    scheduler : None, str or distributed.Client
-        None: a local Dask cluster of ``workers`` processes (default: one per
-        core), started and stopped here. An address (``"tcp://host:8786"``):
-        that cluster. A ``distributed.Client``: used as is (not closed).
-        ``"serial"``: everything in this process, without Dask.
-    chunk_records : int
-        Records per Dask task.
-    progress : callable, optional
-        ``progress(done, total)`` in records, after each chunk (chunks found
-        on disk count as done from the start).
-    workers : int, optional
-        Worker processes of the local cluster (scheduler None).
-    tolerance : float
-        Relative tolerance of the integrator [-].
     table_format : {"csv", "parquet"}
         Format of the table written to ``output_dir`` (Parquet needs pyarrow).
     chart : bool
@@ -339,6 +302,8 @@ def sweep(
         Stop, with :class:`SweepInterrupted`, once this many chunks have been
         computed by this call (their files kept): a budgeted run, or a test
         of resuming.
+    **options
+        Fields of the plan given one by one: ``sweep(case, vary, records=50, scheduler="serial")``.
 
     Returns
     -------
@@ -369,7 +334,9 @@ def sweep(
     pounding.SimulationError
         A record failed to integrate.
     """
-    _check_sizes(records, seed, chunk_records, workers, max_chunks, tolerance)
+    plan = as_plan(plan, options).with_records(defaults.SWEEP_RECORDS)
+    _check_budget(max_chunks)
+    records, seed, chunk_records, tolerance = plan.records, plan.seed, plan.chunk_records, plan.settings.tolerance
     if table_format not in TABLE_FORMATS:
         raise CaseError("format", f"unknown table format {table_format!r}; allowed: {', '.join(TABLE_FORMATS)}")
     if table_format == "parquet":
@@ -393,7 +360,7 @@ def sweep(
         store.write_point(point, paths)
 
     chunks = _chunks(records, chunk_records)
-    computed, reused = _run_points(points, chunks, store, scheduler, workers, seed, tolerance, progress, max_chunks, estimates=True)
+    computed, reused = _run_points(points, chunks, store, plan, max_chunks, estimates=True)
     table = summary_table(points, paths, chunks, store, records, seed)
     table.attrs.update(chunks_computed=computed, chunks_reused=reused, units=units)
     write_table(table, table_path, table_format)

@@ -9,7 +9,6 @@ from fractions import Fraction
 from pounding import defaults
 from pounding.errors import CaseError
 
-DEFAULT_TOLERANCE = defaults.INTEGRATOR_TOLERANCE
 
 
 def _fraction_text(value: Fraction) -> str:
@@ -23,7 +22,7 @@ def _case(data: dict, adjustment: dict | None):
     return adjusted(case_from_dict(data, name=str(data.get("name", "case"))), adjustment)
 
 
-def chunk_sums(data: dict, seed: int, first: int, count: int, tolerance: float = DEFAULT_TOLERANCE,
+def chunk_sums(data: dict, seed: int, first: int, count: int, tolerance: float = defaults.INTEGRATOR_TOLERANCE,
                adjustment: dict | None = None) -> dict:
     """Monte Carlo over records ``first .. first + count - 1`` of one point, reduced to sums.
 
@@ -103,7 +102,7 @@ def warm(data: dict, adjustment: dict | None = None) -> None:
     if not _WARM:
         try:
             point_estimate(data, adjustment)
-            chunk_sums(data, 0, 0, 1, DEFAULT_TOLERANCE, adjustment)
+            chunk_sums(data, 0, 0, 1, defaults.INTEGRATOR_TOLERANCE, adjustment)
         except Exception:  # noqa: BLE001  warming is best effort: the task itself will report the error
             return
         _WARM = True
