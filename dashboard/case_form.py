@@ -1,23 +1,23 @@
 """The dashboard's inputs as a case file, and a case file as the dashboard's
-inputs: pure functions between a dict of input values (in the unit system
-shown) and the case file's schema (README.md), so the library converts, derives
-and validates, and a bad input is named as a case file would name it."""
+inputs: pure functions between the inputs (:class:`~dashboard.inputs.CaseInputs`
+and two :class:`~dashboard.inputs.BuildingInputs`, in the unit system shown) and
+the case file's schema (README.md), so the library converts, derives and
+validates, and a bad input is named as a case file would name it."""
 
 from __future__ import annotations
 
 import math
 
 from pounding.case.case import Case
+from pounding.display_units import Display, display
 from pounding.errors import CaseError
 from pounding.hazard.excitation import CloughPenzien
 from pounding.units import STANDARD_GRAVITY
 
-from dashboard.display_system import display_system
-from dashboard.inputs import dimensions
+from dashboard.inputs import DESIGN_CODE_KEYS, BuildingInputs, CaseInputs
 
-__all__ = ["case_data", "chain_stiffness", "values_from_case"]
+__all__ = ["case_file_of_inputs", "chain_stiffness", "inputs_of_case"]
 
-_CODES = {"EN 1998-1": "ec8", "ASCE 7-16": "asce7-16"}
 _SAMPLING = ("time_step", "cutoff_frequency", "synthesis_factor")
 
 
@@ -27,15 +27,35 @@ def chain_stiffness(mass: float, period: float, storeys: int) -> float:
     return mass * (2.0 * math.pi / period) ** 2 / (4.0 * math.sin(math.pi / (4 * storeys + 2)) ** 2)
 
 
-def _hysteresis(v: dict, b: int) -> dict:
-    form = v[f"hysteresis_{b}"]
+def _in_file_units(inputs, shown: Display) -> dict:
+    """The values of the inputs of ``inputs`` (one building, or the case's) with the dimensional ones in the
+    case file's units."""
+    dims = inputs.dimensions()
+    return {name: shown.to_file(getattr(inputs, name), **dims[name]) if name in dims else getattr(inputs, name)
+            for name in inputs.param}
+
+
+def _hysteresis(b: dict) -> dict:
+    """A storey's hysteresis table, ``b`` its building's input values in the file's units."""
+    form = b["hysteresis"]
     if form == "elastic":
         return {"bouc_wen": {"alpha": 1.0}}
     if form == "Bouc-Wen":
-        return {"bouc_wen": {key: v[f"{key}_{b}"] for key in ("alpha", "A", "beta", "gamma", "n")}}
+        return {"bouc_wen": {key: b[key] for key in ("alpha", "A", "beta", "gamma", "n")}}
     given = {"yield drift": "yield_drift", "yield force": "yield_force"}[form]
-    return {"hysteresis": {given: v[f"{given}_{b}"], "post_yield_ratio": v[f"post_yield_ratio_{b}"], "n": v[f"n_{b}"],
-                           "beta_share": v[f"beta_share_{b}"]}}
+    return {"hysteresis": {given: b[given], "post_yield_ratio": b["post_yield_ratio"], "n": b["n"], "beta_share": b["beta_share"]}}
+
+
+def _building_table(building: BuildingInputs, shown: Display) -> dict:
+    """The case file's table of one building: every storey alike."""
+    b = _in_file_units(building, shown)
+    storey = {"mass": b["mass"], **_hysteresis(b)}
+    if b["storeys"] == 1:
+        storeys = [{**storey, "period": b["period"]}]
+    else:
+        stiffness = chain_stiffness(b["mass"], b["period"], b["storeys"])
+        storeys = [{**storey, "stiffness": stiffness} for _ in range(b["storeys"])]
+    return {"damping_ratio": b["damping_ratio"], "storeys": storeys}
 
 
 def _excitation(v: dict, records: list[str], extra: dict) -> dict:
@@ -51,7 +71,7 @@ def _excitation(v: dict, records: list[str], extra: dict) -> dict:
     if v["envelope"] == "shinozuka-sato":
         common |= {"B1": v["B1"], "B2": v["B2"]}
     if form == "design spectrum":
-        code = _CODES[v["code"]]
+        code = DESIGN_CODE_KEYS[v["code"]]
         parameters = ({"ag": v["ag"], "ground_type": v["ground_type"], "spectrum_type": v["spectrum_type"]} if code == "ec8"
                       else {"SDS": v["SDS"], "SD1": v["SD1"], "TL": v["TL"]})
         return {"spectrum": "design", "code": code, **parameters, **common}
@@ -62,34 +82,26 @@ def _excitation(v: dict, records: list[str], extra: dict) -> dict:
     return {**spectrum, **common}
 
 
-def case_data(v: dict, records: list[str] = (), extra: dict | None = None, name: str = "case", description: str = "") -> dict:
-    """The case file of the input values ``v`` (units as ``v["units"]``); ``records`` the uploaded files' paths,
+def case_file_of_inputs(inputs: CaseInputs, buildings: tuple[BuildingInputs, BuildingInputs], units: str, records: list[str] = (),
+                        extra: dict | None = None, name: str = "case", description: str = "") -> dict:
+    """The case file of ``inputs`` and ``buildings`` (typed in ``units``); ``records`` the uploaded files' paths,
     ``extra`` what a loaded case had that the dashboard does not show (the records' sampling, a Clough-Penzien filter)."""
     extra = extra or {}
-    shown = display_system(v["units"])
-    v = {**v, **{name: shown.to_file(v[name], **dims) for name, dims in dimensions(v).items()}}  # in the file's units
-    buildings = []
-    for b in (1, 2):
-        count = v[f"storeys_{b}"]
-        storey = {"mass": v[f"mass_{b}"], **_hysteresis(v, b)}
-        if count == 1:
-            storeys = [{**storey, "period": v[f"period_{b}"]}]
-        else:
-            stiffness = chain_stiffness(v[f"mass_{b}"], v[f"period_{b}"], count)
-            storeys = [{**storey, "stiffness": stiffness} for _ in range(count)]
-        buildings.append({"damping_ratio": v[f"damping_ratio_{b}"], "storeys": storeys})
+    shown = display(units)
+    v = _in_file_units(inputs, shown)
     return {
-        "units": shown.file_units, "name": name, "description": description,
+        "units": shown.system.name, "name": name, "description": description,
         "excitation": _excitation(v, list(records), extra),
-        "buildings": buildings,
+        "buildings": [_building_table(building, shown) for building in buildings],
         "contact": {"model": v["contact_model"], "gap": v["gap"], "stiffness": v["contact_stiffness"],
-                    "restitution": v["restitution"], "levels": [v["level_1"], v["level_2"]]},
+                    "restitution": v["restitution"], "levels": [building.contact_floor for building in buildings]},
     }
 
 
-def _building_values(case: Case, units: str, data: dict) -> dict:
-    u = display_system(units)
-    out = {}
+def _building_values(case: Case, units: str, data: dict) -> tuple[dict, dict]:
+    """The input values of each building showing ``case``'s (each storey alike) in ``units``."""
+    u = display(units)
+    out = []
     for b, building in enumerate(case.buildings, start=1):
         storeys = building.storeys
         first = storeys[0]
@@ -104,26 +116,28 @@ def _building_values(case: Case, units: str, data: dict) -> dict:
         else:
             form = "yield force" if "yield_force" in given.get("hysteresis", {}) else "yield drift"
         total = bw.beta + bw.gamma
-        out |= {
-            f"storeys_{b}": building.n_storeys,
-            f"period_{b}": float(building.periods[0]),
-            f"mass_{b}": u.from_si(first.mass, mass=1),
-            f"stiffness_{b}": u.from_si(first.stiffness, force=1, length=-1),
-            f"damping_ratio_{b}": building.damping_ratio,
-            f"hysteresis_{b}": form,
-            f"alpha_{b}": bw.alpha, f"A_{b}": bw.A, f"n_{b}": bw.n,
-            f"beta_{b}": u.from_si(bw.beta, length=-bw.n), f"gamma_{b}": u.from_si(bw.gamma, length=-bw.n),
+        values = {
+            "storeys": building.n_storeys,
+            "period": float(building.periods[0]),
+            "mass": u.from_si(first.mass, mass=1),
+            "stiffness": u.from_si(first.stiffness, force=1, length=-1),
+            "damping_ratio": building.damping_ratio,
+            "hysteresis": form,
+            "alpha": bw.alpha, "A": bw.A, "n": bw.n,
+            "beta": u.from_si(bw.beta, length=-bw.n), "gamma": u.from_si(bw.gamma, length=-bw.n),
+            "contact_floor": case.contact.levels[b - 1],
         }
         if form != "elastic" and total > 0:
-            out |= {f"post_yield_ratio_{b}": bw.alpha, f"beta_share_{b}": max(0.5, bw.beta / total),
-                    f"yield_drift_{b}": u.from_si(first.yield_drift, length=1), f"yield_force_{b}": u.from_si(first.yield_force, force=1)}
-    return out
+            values |= {"post_yield_ratio": bw.alpha, "beta_share": max(0.5, bw.beta / total),
+                       "yield_drift": u.from_si(first.yield_drift, length=1), "yield_force": u.from_si(first.yield_force, force=1)}
+        out.append(values)
+    return out[0], out[1]
 
 
 def _excitation_values(case: Case, data: dict, units: str) -> tuple[dict, dict]:
     """The ground motion's input values, and the extras to keep (sampling, a Clough-Penzien filter)."""
     table = data["excitation"]
-    u = display_system(units)
+    u = display(units)
     excitation = case.excitation
     extra = {key: getattr(excitation, key) for key in _SAMPLING} if "records" not in table else {}
     values = {"duration": excitation.duration, "envelope": "none" if excitation.stationary else "shinozuka-sato"}
@@ -136,9 +150,9 @@ def _excitation_values(case: Case, data: dict, units: str) -> tuple[dict, dict]:
         return values, extra
     if table.get("spectrum") == "design":
         code = table.get("code")
-        if code not in _CODES.values():
+        if code not in DESIGN_CODE_KEYS.values():
             raise CaseError("excitation.code", f"the dashboard takes EN 1998-1 and ASCE 7-16 spectra, not {code!r}; use the command line")
-        values |= {"ground_motion": "design spectrum", "code": {c: n for n, c in _CODES.items()}[code]}
+        values |= {"ground_motion": "design spectrum", "code": {c: n for n, c in DESIGN_CODE_KEYS.items()}[code]}
         keys = ("ag", "ground_type", "spectrum_type") if code == "ec8" else ("SDS", "SD1", "TL")
         values |= {key: table[key] for key in keys if key in table}
         return values, extra
@@ -153,19 +167,18 @@ def _excitation_values(case: Case, data: dict, units: str) -> tuple[dict, dict]:
     return values, extra
 
 
-def values_from_case(case: Case, data: dict, units: str) -> tuple[dict, dict]:
-    """The input values showing ``case`` (loaded from the case file ``data``) in ``units``, and the extras to keep.
+def inputs_of_case(case: Case, data: dict, units: str) -> tuple[dict, tuple[dict, dict], dict]:
+    """The input values showing ``case`` (loaded from the case file ``data``) in ``units``: the case's (ground
+    motion, contact), each building's, and the extras to keep.
 
     Raises :class:`CaseError` for what the dashboard cannot show (storeys that differ, a tabulated spectrum)."""
-    u = display_system(units)
+    u = display(units)
     contact = case.contact
-    values = _building_values(case, units, data)
-    excitation, extra = _excitation_values(case, data, units)
-    values |= excitation
+    buildings = _building_values(case, units, data)
+    values, extra = _excitation_values(case, data, units)
     values |= {
-        "level_1": contact.levels[0], "level_2": contact.levels[1],
         "gap": u.from_si(contact.gap, length=1),
         "contact_stiffness": u.from_si(contact.stiffness, force=1, length=-contact.stiffness_exponent),
         "restitution": contact.restitution, "contact_model": contact.model,
     }
-    return values, extra
+    return values, buildings, extra

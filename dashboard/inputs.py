@@ -2,8 +2,10 @@
 bounds, its help text and its dimension (the view labels it with its unit in
 the unit system shown). Accelerations written in g are in g in every system.
 
-The model (``model.py``) turns them into a case file (README.md schema), so the
-library validates them and names a bad one as a case file would.
+:class:`BuildingInputs` holds one building's (the model holds two);
+:class:`CaseInputs` the ground motion's and the design check's. The model
+(``model.py``) turns them into a case file (README.md schema), so the library
+validates them and names a bad one as a case file would.
 """
 
 from __future__ import annotations
@@ -15,123 +17,127 @@ from pounding.case.excitation import GROUND_TYPES
 from pounding.mechanics.contact import CONTACT_MODELS, contact_law
 
 __all__ = [
-    "CODES",
+    "DESIGN_CODE_KEYS",
     "EXCITATION_FORMS",
     "HYSTERESIS_FORMS",
     "INTENSITY_FORMS",
-    "MAX_STOREYS",
     "SCALINGS",
-    "building_params",
-    "dimensions",
+    "BuildingInputs",
+    "CaseInputs",
+    "input_names",
 ]
 
-MAX_STOREYS = 10
 EXCITATION_FORMS = ("Kanai-Tajimi", "design spectrum", "recorded motions")
 INTENSITY_FORMS = ("PGA", "G0")
-CODES = ("EN 1998-1", "ASCE 7-16")
+DESIGN_CODE_KEYS = {"EN 1998-1": "ec8", "ASCE 7-16": "asce7-16"}
+"""The design codes the dashboard offers, by the name it shows, and their key in a case file (``excitation.code``)."""
 SCALINGS = ("as recorded", "scale factor", "PGA")
 HYSTERESIS_FORMS = ("yield drift", "yield force", "elastic", "Bouc-Wen")
 """How a storey's hysteresis is given: the engineer's forms (G28), elastic, or the raw Bouc-Wen parameters (advanced)."""
 
-
-def building_params(number: int, period: float) -> dict:
-    """The inputs of building ``number``: every storey alike."""
-    b = f"building {number}"
-    return {
-        f"storeys_{number}": param.Integer(1, bounds=(1, MAX_STOREYS), label="storeys",
-                                           doc=f"Number of storeys of {b}, all alike. Changing it keeps the fundamental period."),
-        f"period_{number}": param.Number(period, bounds=(0.02, 10.0), label=f"fundamental period T{number} [s]",
-                                         doc=f"Initial (pre-yield) fundamental period of {b} [s]; with the floor mass it fixes the storey stiffness."),
-        f"mass_{number}": param.Number(4e4, bounds=(0.0, None), inclusive_bounds=(False, True), label="floor mass",
-                                       doc=f"Mass of each floor of {b}."),
-        f"stiffness_{number}": param.Number(1e6, label="storey stiffness (from T)", precedence=0.5,
-                                            doc=f"Initial stiffness of each storey of {b}, derived from T and the mass (read only)."),
-        f"damping_ratio_{number}": param.Number(0.05, bounds=(0.0, 0.3), label="damping ratio [-]",
-                                                doc="Viscous damping ratio of the first mode (stiffness-proportional for several storeys)."),
-        f"hysteresis_{number}": param.Selector(default="yield drift", objects=list(HYSTERESIS_FORMS), label="storeys given by",
-                                               doc="Yield drift or yield force with a post-yield ratio (Bouc-Wen, G28), elastic, "
-                                               "or the raw Bouc-Wen parameters (advanced)."),
-        f"yield_drift_{number}": param.Number(0.01, bounds=(0.0, None), inclusive_bounds=(False, True), label="yield drift",
-                                              doc="Storey drift at yield (the Bouc-Wen yield displacement, Eq. 33)."),
-        f"yield_force_{number}": param.Number(1e4, bounds=(0.0, None), inclusive_bounds=(False, True), label="yield force",
-                                              doc="Storey shear at yield; the yield drift is this over the storey stiffness."),
-        f"post_yield_ratio_{number}": param.Number(0.05, bounds=(0.0, 1.0), inclusive_bounds=(True, False), label="post-yield ratio [-]",
-                                                   doc="Post-yield to initial stiffness ratio, in [0, 1)."),
-        f"n_{number}": param.Number(1.0, bounds=(1.0, 10.0), label="Bouc-Wen n [-]", doc="Smoothness of yielding (1: gradual), >= 1."),
-        f"beta_share_{number}": param.Number(0.5, bounds=(0.5, 10.0), label="Bouc-Wen beta share [-]",
-                                             doc="beta / (beta + gamma), >= 0.5: 0.5 is Wen's symmetric loop, 2 the paper's beta = 2, gamma = -1."),
-        f"alpha_{number}": param.Number(0.05, bounds=(0.0, 1.0), label="Bouc-Wen alpha [-]", doc="Post-yield to initial stiffness ratio."),
-        f"A_{number}": param.Number(1.0, bounds=(0.01, 10.0), label="Bouc-Wen A [-]", doc="Amplitude of the hysteretic rate."),
-        f"beta_{number}": param.Number(200.0, label="Bouc-Wen beta", doc="Shape parameter [1/length^n]; beta + gamma > 0."),
-        f"gamma_{number}": param.Number(-100.0, label="Bouc-Wen gamma", doc="Shape parameter [1/length^n]; beta - gamma >= 0."),
-    }
+_STOREYS = (1, defaults.DASHBOARD_MAX_STOREYS)
 
 
-def excitation_params() -> dict:
-    """The ground motion's inputs, in its three forms."""
-    return {
-        "ground_motion": param.Selector(default=EXCITATION_FORMS[0], objects=list(EXCITATION_FORMS), label="ground motion",
-                                        doc="A Kanai-Tajimi process, a code design spectrum (its compatible PSD), or uploaded records."),
-        "intensity": param.Selector(default="PGA", objects=list(INTENSITY_FORMS), label="intensity by",
-                                    doc="The expected peak ground acceleration of the records (G30), or the white-noise intensity G0."),
-        "pga": param.Number(0.3, bounds=(0.0, 5.0), inclusive_bounds=(False, True), label="expected PGA [g]",
-                            doc="Expected peak ground acceleration of the records, in g."),
-        "G0": param.Number(6.503e-3, bounds=(0.0, None), inclusive_bounds=(False, True), label="G0",
-                           doc="Two-sided white-noise intensity of the Kanai-Tajimi filter (Eq. 7)."),
-        "omega_g": param.Number(27.02, bounds=(0.5, 200.0), label="omega_g [rad/s]", doc="Ground filter frequency (Eq. 7)."),
-        "xi_g": param.Number(0.34, bounds=(0.01, 5.0), label="xi_g [-]", doc="Ground filter damping ratio (Eq. 7)."),
-        "code": param.Selector(default=CODES[0], objects=list(CODES), label="design code", doc="EN 1998-1 (3.2.2.2) or ASCE 7-16 (11.4.6)."),
-        "ag": param.Number(0.25, bounds=(0.0, 3.0), inclusive_bounds=(False, True), label="design ground acceleration ag [g]",
-                           doc="EN 1998-1 design ground acceleration on type A ground, in g."),
-        "ground_type": param.Selector(default="C", objects=list(GROUND_TYPES), label="ground type", doc="EN 1998-1 Table 3.1."),
-        "spectrum_type": param.Selector(default=1, objects=[1, 2], label="spectrum type", doc="EN 1998-1: 1 for Ms > 5.5, 2 below."),
-        "SDS": param.Number(1.0, bounds=(0.0, 5.0), inclusive_bounds=(False, True), label="SDS [g]", doc="ASCE 7-16 short-period design acceleration."),
-        "SD1": param.Number(0.6, bounds=(0.0, 5.0), inclusive_bounds=(False, True), label="SD1 [g]", doc="ASCE 7-16 one-second design acceleration."),
-        "TL": param.Number(8.0, bounds=(1.0, 20.0), label="TL [s]", doc="ASCE 7-16 long-period transition period."),
-        "scaling": param.Selector(default=SCALINGS[0], objects=list(SCALINGS), label="records scaled",
-                                  doc="Records as recorded, times a factor, or each to a peak ground acceleration."),
-        "scale": param.Number(1.0, bounds=(0.0, 100.0), inclusive_bounds=(False, True), label="scale factor [-]", doc="Every record times this."),
-        "records_pga": param.Number(0.3, bounds=(0.0, 5.0), inclusive_bounds=(False, True), label="each record's PGA [g]",
-                                    doc="Every record scaled to this peak ground acceleration, in g."),
-        "duration": param.Number(20.0, bounds=(1.0, 200.0), label="duration [s]", doc="Length of the synthetic records."),
-        "envelope": param.Selector(default="none", objects=["none", "shinozuka-sato"], label="envelope",
-                                   doc="Stationary records, or modulated by the Shinozuka-Sato envelope (Eq. 9)."),
-        "B1": param.Number(0.085, bounds=(0.001, 5.0), label="envelope B1 [1/s]", doc="Shinozuka-Sato decay constant B1 (Eq. 9), below B2."),
-        "B2": param.Number(0.17, bounds=(0.002, 10.0), label="envelope B2 [1/s]", doc="Shinozuka-Sato decay constant B2 (Eq. 9), above B1."),
-    }
+class BuildingInputs(param.Parameterized):
+    """The inputs of one building, every storey alike (dimensional ones in the unit system shown)."""
+
+    number = param.Integer(1, bounds=(1, 2), constant=True, precedence=-1, doc="1 or 2: which building of the pair.")
+    storeys = param.Integer(1, bounds=_STOREYS, label="storeys",
+                            doc="Number of storeys, all alike. Changing it keeps the fundamental period.")
+    period = param.Number(1.0, bounds=(0.02, 10.0), label="fundamental period [s]",
+                          doc="Initial (pre-yield) fundamental period [s]; with the floor mass it fixes the storey stiffness.")
+    mass = param.Number(4e4, bounds=(0.0, None), inclusive_bounds=(False, True), label="floor mass", doc="Mass of each floor.")
+    stiffness = param.Number(1e6, label="storey stiffness (from T)", precedence=0.5,
+                             doc="Initial stiffness of each storey, derived from T and the mass (read only).")
+    damping_ratio = param.Number(0.05, bounds=(0.0, 0.3), label="damping ratio [-]",
+                                 doc="Viscous damping ratio of the first mode (stiffness-proportional for several storeys).")
+    hysteresis = param.Selector(default="yield drift", objects=list(HYSTERESIS_FORMS), label="storeys given by",
+                                doc="Yield drift or yield force with a post-yield ratio (Bouc-Wen, G28), elastic, "
+                                "or the raw Bouc-Wen parameters (advanced).")
+    yield_drift = param.Number(0.01, bounds=(0.0, None), inclusive_bounds=(False, True), label="yield drift",
+                               doc="Storey drift at yield (the Bouc-Wen yield displacement, Eq. 33).")
+    yield_force = param.Number(1e4, bounds=(0.0, None), inclusive_bounds=(False, True), label="yield force",
+                               doc="Storey shear at yield; the yield drift is this over the storey stiffness.")
+    post_yield_ratio = param.Number(0.05, bounds=(0.0, 1.0), inclusive_bounds=(True, False), label="post-yield ratio [-]",
+                                    doc="Post-yield to initial stiffness ratio, in [0, 1).")
+    n = param.Number(1.0, bounds=(1.0, 10.0), label="Bouc-Wen n [-]", doc="Smoothness of yielding (1: gradual), >= 1.")
+    beta_share = param.Number(0.5, bounds=(0.5, 10.0), label="Bouc-Wen beta share [-]",
+                              doc="beta / (beta + gamma), >= 0.5: 0.5 is Wen's symmetric loop, 2 the paper's beta = 2, gamma = -1.")
+    alpha = param.Number(0.05, bounds=(0.0, 1.0), label="Bouc-Wen alpha [-]", doc="Post-yield to initial stiffness ratio.")
+    A = param.Number(1.0, bounds=(0.01, 10.0), label="Bouc-Wen A [-]", doc="Amplitude of the hysteretic rate.")
+    beta = param.Number(200.0, label="Bouc-Wen beta", doc="Shape parameter [1/length^n]; beta + gamma > 0.")
+    gamma = param.Number(-100.0, label="Bouc-Wen gamma", doc="Shape parameter [1/length^n]; beta - gamma >= 0.")
+    contact_floor = param.Integer(1, bounds=_STOREYS, label="contact floor",
+                                  doc="The floor of this building that meets the other building.")
+
+    def __init__(self, **params):
+        super().__init__(**params)
+        number = self.number
+        self.param.period.label = f"fundamental period T{number} [s]"
+        self.param.contact_floor.label = f"contact floor of building {number}"
+
+    def dimensions(self) -> dict[str, dict]:
+        """The dimension (exponents of length, force, mass) of each dimensional input; the Bouc-Wen beta and
+        gamma [1/length^n] depend on n."""
+        return {"mass": {"mass": 1}, "stiffness": {"force": 1, "length": -1}, "yield_drift": {"length": 1},
+                "yield_force": {"force": 1}, "beta": {"length": -self.n}, "gamma": {"length": -self.n}}
 
 
-def design_params() -> dict:
-    """What the design check asks: the gap, the target probability, a capacity, and the contact."""
-    return {
-        "gap": param.Number(0.01, bounds=(0.0, None), label="gap", doc="Separation of the contact floors at rest."),
-        "target_probability": param.Number(defaults.TARGET_PROBABILITY, bounds=(0.5, 0.9999), label="target P(no pounding) [-]",
-                                           doc="Probability of no pounding during the record that the gap needed must give."),
-        "capacity": param.Number(3e5, bounds=(0.0, None), inclusive_bounds=(False, True), label="capacity",
-                                 doc="A force the connection or slab edge takes: P(F_max > capacity) and the fragility curve."),
-        "restitution": param.Number(0.65, bounds=(0.01, 1.0), label="restitution e [-]", doc="Coefficient of restitution of an impact, in (0, 1]."),
-        "contact_model": param.Selector(default="jankowski", objects=list(CONTACT_MODELS), label="contact law",
-                                        doc="Jankowski's nonlinear viscoelastic law (the paper's), Hertz, Hertzdamp, or linear viscoelastic."),
-        "contact_stiffness": param.Number(2e9, bounds=(0.0, None), inclusive_bounds=(False, True), label="contact stiffness",
-                                          doc="Impact stiffness beta (force/length^1.5; the linear law force/length)."),
-        "level_1": param.Integer(1, bounds=(1, MAX_STOREYS), label="contact floor of building 1", doc="Floor of building 1 that meets building 2."),
-        "level_2": param.Integer(1, bounds=(1, MAX_STOREYS), label="contact floor of building 2", doc="Floor of building 2 that meets building 1."),
-    }
+class CaseInputs(param.Parameterized):
+    """The ground motion's inputs, in its three forms, and the design check's: the gap, the target probability,
+    a capacity, and the contact."""
+
+    ground_motion = param.Selector(default=EXCITATION_FORMS[0], objects=list(EXCITATION_FORMS), label="ground motion",
+                                   doc="A Kanai-Tajimi process, a code design spectrum (its compatible PSD), or uploaded records.")
+    intensity = param.Selector(default="PGA", objects=list(INTENSITY_FORMS), label="intensity by",
+                               doc="The expected peak ground acceleration of the records (G30), or the white-noise intensity G0.")
+    pga = param.Number(0.3, bounds=(0.0, 5.0), inclusive_bounds=(False, True), label="expected PGA [g]",
+                       doc="Expected peak ground acceleration of the records, in g.")
+    G0 = param.Number(6.503e-3, bounds=(0.0, None), inclusive_bounds=(False, True), label="G0",
+                      doc="Two-sided white-noise intensity of the Kanai-Tajimi filter (Eq. 7).")
+    omega_g = param.Number(27.02, bounds=(0.5, 200.0), label="omega_g [rad/s]", doc="Ground filter frequency (Eq. 7).")
+    xi_g = param.Number(0.34, bounds=(0.01, 5.0), label="xi_g [-]", doc="Ground filter damping ratio (Eq. 7).")
+    code = param.Selector(default="EN 1998-1", objects=list(DESIGN_CODE_KEYS), label="design code",
+                          doc="EN 1998-1 (3.2.2.2) or ASCE 7-16 (11.4.6).")
+    ag = param.Number(0.25, bounds=(0.0, 3.0), inclusive_bounds=(False, True), label="design ground acceleration ag [g]",
+                      doc="EN 1998-1 design ground acceleration on type A ground, in g.")
+    ground_type = param.Selector(default="C", objects=list(GROUND_TYPES), label="ground type", doc="EN 1998-1 Table 3.1.")
+    spectrum_type = param.Selector(default=1, objects=[1, 2], label="spectrum type", doc="EN 1998-1: 1 for Ms > 5.5, 2 below.")
+    SDS = param.Number(1.0, bounds=(0.0, 5.0), inclusive_bounds=(False, True), label="SDS [g]", doc="ASCE 7-16 short-period design acceleration.")
+    SD1 = param.Number(0.6, bounds=(0.0, 5.0), inclusive_bounds=(False, True), label="SD1 [g]", doc="ASCE 7-16 one-second design acceleration.")
+    TL = param.Number(8.0, bounds=(1.0, 20.0), label="TL [s]", doc="ASCE 7-16 long-period transition period.")
+    scaling = param.Selector(default=SCALINGS[0], objects=list(SCALINGS), label="records scaled",
+                             doc="Records as recorded, times a factor, or each to a peak ground acceleration.")
+    scale = param.Number(1.0, bounds=(0.0, 100.0), inclusive_bounds=(False, True), label="scale factor [-]", doc="Every record times this.")
+    records_pga = param.Number(0.3, bounds=(0.0, 5.0), inclusive_bounds=(False, True), label="each record's PGA [g]",
+                               doc="Every record scaled to this peak ground acceleration, in g.")
+    duration = param.Number(20.0, bounds=(1.0, 200.0), label="duration [s]", doc="Length of the synthetic records.")
+    envelope = param.Selector(default="none", objects=["none", "shinozuka-sato"], label="envelope",
+                              doc="Stationary records, or modulated by the Shinozuka-Sato envelope (Eq. 9).")
+    B1 = param.Number(0.085, bounds=(0.001, 5.0), label="envelope B1 [1/s]", doc="Shinozuka-Sato decay constant B1 (Eq. 9), below B2.")
+    B2 = param.Number(0.17, bounds=(0.002, 10.0), label="envelope B2 [1/s]", doc="Shinozuka-Sato decay constant B2 (Eq. 9), above B1.")
+
+    gap = param.Number(0.01, bounds=(0.0, None), label="gap", doc="Separation of the contact floors at rest.")
+    target_probability = param.Number(defaults.TARGET_PROBABILITY, bounds=(0.5, 0.9999), label="target P(no pounding) [-]",
+                                      doc="Probability of no pounding during the record that the gap needed must give.")
+    capacity = param.Number(3e5, bounds=(0.0, None), inclusive_bounds=(False, True), label="capacity",
+                            doc="A force the connection or slab edge takes: P(F_max > capacity) and the fragility curve.")
+    restitution = param.Number(0.65, bounds=(0.01, 1.0), label="restitution e [-]", doc="Coefficient of restitution of an impact, in (0, 1].")
+    contact_model = param.Selector(default="jankowski", objects=list(CONTACT_MODELS), label="contact law",
+                                   doc="Jankowski's nonlinear viscoelastic law (the paper's), Hertz, Hertzdamp, or linear viscoelastic.")
+    contact_stiffness = param.Number(2e9, bounds=(0.0, None), inclusive_bounds=(False, True), label="contact stiffness",
+                                     doc="Impact stiffness beta (force/length^1.5; the linear law force/length).")
+
+    def dimensions(self) -> dict[str, dict]:
+        """The dimension (exponents of length, force, time) of each dimensional input; the contact stiffness's
+        depends on the contact law's exponent."""
+        exponent = contact_law(self.contact_model).stiffness_exponent
+        return {"G0": {"length": 2, "time": -3}, "gap": {"length": 1}, "capacity": {"force": 1},
+                "contact_stiffness": {"force": 1, "length": -exponent}}
 
 
-def dimensions(values) -> dict[str, dict]:
-    """The dimension (exponents of length, force, mass, time) of each dimensional input; ``values`` the inputs (a
-    dict, or the model) for the contact law's exponent and the Bouc-Wen n that dimensions depend on."""
-    get = values.get if isinstance(values, dict) else lambda name: getattr(values, name)
-    exponent = contact_law(get("contact_model")).stiffness_exponent
-    out = {
-        "G0": {"length": 2, "time": -3},
-        "gap": {"length": 1},
-        "capacity": {"force": 1},
-        "contact_stiffness": {"force": 1, "length": -exponent},
-    }
-    for b in (1, 2):
-        n = get(f"n_{b}")
-        out |= {f"mass_{b}": {"mass": 1}, f"stiffness_{b}": {"force": 1, "length": -1}, f"yield_drift_{b}": {"length": 1},
-                f"yield_force_{b}": {"force": 1}, f"beta_{b}": {"length": -n}, f"gamma_{b}": {"length": -n}}
-    return out
+def input_names(inputs: param.Parameterized) -> list[str]:
+    """The names of the inputs of ``inputs`` (a :class:`BuildingInputs`, a :class:`CaseInputs`): its parameters
+    not hidden (precedence below 0) and not its own name."""
+    return [name for name, parameter in inputs.param.objects("existing").items()
+            if name != "name" and (parameter.precedence is None or parameter.precedence >= 0)]

@@ -1,5 +1,5 @@
 """The dashboard's messages for a bad input: one line naming the input as the page labels it, and the case
-file's key beside it."""
+file's key beside it (never a command-line option: the page has no command line)."""
 
 from __future__ import annotations
 
@@ -29,6 +29,8 @@ def message(error: Exception) -> str:
             where = f"contact {'.'.join(parts[1:])}"
         elif parts[0] == "excitation":
             where = f"excitation {'.'.join(parts[1:])}"
+        elif field.startswith("--"):  # a command-line option: the page's input of the same name ("records")
+            return f"Invalid input: {field[2:]}: {error.message}"
         prefix = f"{where} ({field})" if where else field
         return f"Invalid input: {prefix}: {error.message}"
     return f"{type(error).__name__}: {error}"

@@ -1,7 +1,8 @@
 """The dashboard's model: the case's inputs as parameters, in an engineer's
-terms, and what they give.
+terms (the ground motion's and the design check's here, each building's in its
+own :class:`~dashboard.inputs.BuildingInputs`), and what they give.
 
-The inputs are assembled into a case file (``case_form.case_data``), in the
+The inputs are assembled into a case file (``case_form.case_file_of_inputs``), in the
 unit system shown, and handed to ``pounding.case.case.case_from_dict``: the library
 converts units, derives and validates, and its ``CaseError`` names the field as
 a case file would. Each change is computed off the event loop, the newest only
@@ -25,16 +26,16 @@ import param
 
 from pounding import defaults
 from pounding.case.case import case_from_dict, load_case
-from pounding.errors import CaseError, ConvergenceError, SimulationError
 from pounding.closed_form.estimator import estimate
 from pounding.closed_form.pair import LinearizedPair
+from pounding.display_units import display
+from pounding.errors import CaseError, ConvergenceError, SimulationError
 from pounding.presets import preset_names, preset_text
 from pounding.report import compute_snapshot
 from pounding.units import UNIT_SYSTEMS
 
-from dashboard.case_form import case_data, chain_stiffness, values_from_case
-from dashboard.display_system import display_system
-from dashboard.inputs import building_params, design_params, dimensions, excitation_params
+from dashboard.case_form import case_file_of_inputs, chain_stiffness, inputs_of_case
+from dashboard.inputs import BuildingInputs, CaseInputs, input_names
 from dashboard.messages import message
 from dashboard.runner import Latest
 from dashboard.studies import Studies
@@ -45,8 +46,11 @@ __all__ = ["PoundingModel"]
 _FAILURES = (CaseError, ConvergenceError, SimulationError, OverflowError, ValueError)
 """What an input can make the library raise: shown as a message naming the input, never a traceback."""
 
+_NOT_OF_THE_CASE = ("preset", "units", "advanced", "records", "seed")
+"""Inputs of the model that are not the case's (a preset's values are compared without them)."""
 
-class PoundingModel(Studies):
+
+class PoundingModel(CaseInputs, Studies):
     """Inputs of a case (dimensional ones in the unit system shown) and the results for it."""
 
     preset = param.Selector(default=defaults.CASE, objects=preset_names(), label="case (preset)",
@@ -54,11 +58,8 @@ class PoundingModel(Studies):
     units = param.Selector(default="SI", objects=list(UNIT_SYSTEMS), label="units",
                            doc="Unit system of the inputs and results: SI (kN, mm) or the paper's kgf, cm, s.")
     advanced = param.Boolean(False, label="advanced inputs", doc="Show the raw Bouc-Wen form, the contact law and its stiffness.")
-
-    locals().update(design_params())
-    locals().update(building_params(1, 1.2))
-    locals().update(building_params(2, 0.4))
-    locals().update(excitation_params())
+    building_1 = param.ClassSelector(class_=BuildingInputs, constant=True, precedence=-1, doc="The inputs of building 1.")
+    building_2 = param.ClassSelector(class_=BuildingInputs, constant=True, precedence=-1, doc="The inputs of building 2.")
 
     # --- outputs (not inputs) ---
     result = param.Parameter(None, precedence=-1, doc="pounding.closed_form.estimator.Estimate of the current inputs, or None.")
@@ -70,29 +71,40 @@ class PoundingModel(Studies):
     def __init__(self, schedule: Callable | None = None, batch=None, submit: Callable | None = None, **params):
         """``schedule(fn)`` runs ``fn`` on the session's event loop (default: at once); ``batch()`` is a context
         manager around each update of the outputs; ``submit(fn)`` runs a computation (default: at once, here)."""
+        params.setdefault("building_1", BuildingInputs(number=1, period=1.2))
+        params.setdefault("building_2", BuildingInputs(number=2, period=0.4))
         super().__init__(**params)
         self._schedule = schedule or (lambda fn: fn())
         self._batch = batch or contextlib.nullcontext
         self._compute_off_loop = submit or (lambda fn: fn())
         self._latest = Latest(self._compute_off_loop, self._schedule)
+        self._make_jobs()
         self._syncing = False
         self._extra: dict = {}
         self._description = ""
         self._preset_values: dict = {}
         self._records_folder: Path | None = None
         self._shown_units = self.units
+        self.param.watch(self._on_input, [name for name in input_names(self) if name not in _NOT_OF_THE_CASE or name == "seed"])
+        for building in self.buildings():
+            building.param.watch(self._on_building_input, [name for name in input_names(building) if name != "stiffness"])
         self._load_preset()
 
     # --- inputs <-> case ---------------------------------------------------------
 
-    def input_values(self) -> dict:
-        """Every input's value (dimensional ones in ``units``)."""
-        return {name: getattr(self, name) for name in self.param if self.param[name].precedence is None or self.param[name].precedence >= 0}
+    def buildings(self) -> tuple[BuildingInputs, BuildingInputs]:
+        """The inputs of building 1 and of building 2."""
+        return self.building_1, self.building_2
 
-    def case_data(self) -> dict:
+    def inputs(self) -> list[tuple[param.Parameterized, str]]:
+        """Every input, as (its owner: this model or one of its buildings, its name)."""
+        return [(owner, name) for owner in (self, *self.buildings()) for name in input_names(owner)]
+
+    def case_file(self) -> dict:
         """The inputs as a case file's contents (README.md schema), in ``units``."""
         records = [path.name for path in sorted(self._records_folder.iterdir())] if self._records_folder else []
-        return case_data(self.input_values(), records, self._extra, name=self.case_name(), description=self._description)
+        return case_file_of_inputs(self, self.buildings(), self.units, records, self._extra, name=self.case_name(),
+                                   description=self._description)
 
     def case_name(self) -> str:
         """The preset's name, marked when the inputs differ from it."""
@@ -100,36 +112,38 @@ class PoundingModel(Studies):
 
     def changes(self) -> list[tuple[str, object, object, str]]:
         """The inputs that differ from the preset's: (label, preset's value, current value, unit), in ``units``."""
-        shown = display_system(self.units)
-        dims = dimensions(self)
+        shown = display(self.units)
         out = []
-        for name, before in self._preset_values.items():
-            now = getattr(self, name)
-            if name.startswith("stiffness_") or not _differs(before, now) or not applies(self, name):
+        for (owner, name), before in self._preset_values.items():
+            now = getattr(owner, name)
+            if name == "stiffness" or not _differs(before, now) or not applies(self, owner, name):
                 continue  # the storey stiffness is derived from the period, and shown only
+            dims = owner.dimensions()
             unit = shown.label(**dims[name]) if name in dims else ""
-            out.append((self.param[name].label, before, now, unit))
+            out.append((owner.param[name].label, before, now, unit))
         return out
 
     def build_case(self, data: dict | None = None):
         """The case of the current inputs (raises CaseError naming the input)."""
-        data = self.case_data() if data is None else data
+        data = self.case_file() if data is None else data
         return case_from_dict(data, name=data["name"], base_directory=self._records_folder)
 
     def _show(self, case, data: dict) -> None:
         """Set the inputs to show ``case`` (loaded from ``data``), and compute."""
-        values, extra = values_from_case(case, data, self.units)
+        values, building_values, extra = inputs_of_case(case, data, self.units)
         self._extra, self._description = extra, case.description
         self._set_quietly(values)
-        self._preset_values = {name: getattr(self, name) for name in self.input_values() if name not in ("preset", "units", "advanced",
-                                                                                                         "records", "seed")}
+        for building, shown in zip(self.buildings(), building_values):
+            self._set_quietly(shown, building)
+        self._preset_values = {(owner, name): getattr(owner, name) for owner, name in self.inputs()
+                               if owner is not self or name not in _NOT_OF_THE_CASE}
         self.recompute()
 
     def _load_preset(self) -> None:
         data = tomllib.loads(preset_text(self.preset))
         case = load_case(self.preset)
         self._clear_records()
-        capacity = _round_up(display_system(self.units).from_si(_capacity_guess(case), force=1))
+        capacity = _round_up(display(self.units).from_si(_capacity_guess(case), force=1))
         self._set_quietly({"capacity": capacity})
         self._show(case, data)
 
@@ -157,7 +171,7 @@ class PoundingModel(Studies):
         """The current inputs as a TOML case file."""
         import tomli_w
 
-        data = self.case_data()
+        data = self.case_file()
         if self._records_folder is not None:
             data["excitation"]["records"] = [Path(p).name for p in data["excitation"]["records"]]
         return tomli_w.dumps(data)
@@ -182,11 +196,11 @@ class PoundingModel(Studies):
         self._records_folder = None
         self._set_quietly({"uploaded": []})
 
-    def _set_quietly(self, values: dict) -> None:
-        """Set inputs without recomputing (a preset, a unit switch, derived values)."""
+    def _set_quietly(self, values: dict, owner: param.Parameterized | None = None) -> None:
+        """Set inputs of ``owner`` (default: this model) without recomputing (a preset, a unit switch, derived values)."""
         self._syncing = True
         try:
-            self.param.update(**values)
+            (owner or self).param.update(**values)
         finally:
             self._syncing = False
 
@@ -197,59 +211,63 @@ class PoundingModel(Studies):
     @param.depends("units", watch=True)
     def _on_units(self):
         """Convert the dimensional inputs to the new unit system (the case is unchanged)."""
-        old, new = display_system(self._shown_units), display_system(self.units)
+        old, new = display(self._shown_units), display(self.units)
         self._shown_units = self.units
-        dims = dimensions(self)
-        convert = lambda name, value: new.from_si(old.to_si(value, **dims[name]), **dims[name])  # noqa: E731
-        self._preset_values = {name: convert(name, value) if name in dims else value for name, value in self._preset_values.items()}
-        self._set_quietly({name: convert(name, getattr(self, name)) for name in dims})
+        owners = (self, *self.buildings())
+        dims = {owner: owner.dimensions() for owner in owners}
+
+        def convert(owner, name, value):
+            return new.from_si(old.to_si(value, **dims[owner][name]), **dims[owner][name])
+
+        self._preset_values = {(owner, name): convert(owner, name, value) if name in dims[owner] else value
+                               for (owner, name), value in self._preset_values.items()}
+        for owner in owners:
+            self._set_quietly({name: convert(owner, name, getattr(owner, name)) for name in dims[owner]}, owner)
         self.recompute()
 
-    @param.depends("storeys_1", "storeys_2", watch=True)
-    def _on_storeys(self):
-        """More or fewer storeys keep the fundamental period: the storey stiffness follows, and the page says so
-        (and where a contact floor no longer exists, that it moved)."""
+    def _on_building_input(self, *events) -> None:
         if self._syncing:
             return
-        notes = [f"The storey stiffness follows the number of storeys: T1 = {self.period_1:.3g} s and T2 = {self.period_2:.3g} s are kept."]
-        moved = False
-        for b in (1, 2):
-            count = getattr(self, f"storeys_{b}")
-            if getattr(self, f"level_{b}") > count:
-                self._set_quietly({f"level_{b}": count})
-                notes.append(f"Building {b}'s contact floor moved to {count}: it has {count} storey(s).")
-                moved = True
+        if any(event.name == "storeys" for event in events):
+            self._storeys_changed()
+        self.recompute()
+
+    def _storeys_changed(self) -> None:
+        """More or fewer storeys keep the fundamental period: the storey stiffness follows, and the page says so
+        (and where a contact floor no longer exists, that it moved to the top floor)."""
+        first, second = self.buildings()
+        notes = [f"The storey stiffness follows the number of storeys: T1 = {first.period:.3g} s and T2 = {second.period:.3g} s are kept."]
+        for building in self.buildings():
+            if building.contact_floor > building.storeys:
+                self._set_quietly({"contact_floor": building.storeys}, building)
+                notes.append(f"Building {building.number}'s contact floor moved to {building.storeys}: it has {building.storeys} storey(s).")
         self.note = " ".join(notes)
-        if moved:  # the change's own computation may have run with the floor that no longer exists
-            self.recompute()
 
     @param.depends("contact_model", watch=True)
     def _on_contact_model(self):
         """Another law reads the contact stiffness in other units (force/length^1.5 or force/length): say so."""
         if not self._syncing:
-            unit = display_system(self.units).label(**dimensions(self)["contact_stiffness"])
+            unit = display(self.units).label(**self.dimensions()["contact_stiffness"])
             self.note = f"The contact stiffness is now read in {unit} ({self.contact_model} law): check its value."
 
     # --- outputs -------------------------------------------------------------------
 
     def recompute(self) -> None:
         """Compute every output for the current inputs, the newest request only: the estimate, then the plots."""
-        data = self.case_data()
+        data = self.case_file()
         self._derive_stiffness()
         self._latest.request(lambda current, deliver: self._compute(data, current, deliver))
 
     def _derive_stiffness(self) -> None:
         """Show each building's storey stiffness, derived from its period, mass and storeys."""
-        derived = {}
-        u = display_system(self.units)
-        for b in (1, 2):
+        u = display(self.units)
+        for building in self.buildings():
             try:
-                stiffness = chain_stiffness(u.to_si(getattr(self, f"mass_{b}"), mass=1), getattr(self, f"period_{b}"), getattr(self, f"storeys_{b}"))
+                stiffness = chain_stiffness(u.to_si(building.mass, mass=1), building.period, building.storeys)
             except (ZeroDivisionError, OverflowError):
                 continue
             if math.isfinite(stiffness):
-                derived[f"stiffness_{b}"] = u.from_si(stiffness, force=1, length=-1)
-        self._set_quietly(derived)
+                self._set_quietly({"stiffness": u.from_si(stiffness, force=1, length=-1)}, building)
 
     def _compute(self, data: dict, current, deliver) -> None:
         """The estimate, delivered; then, once the headline is out, what the plots show (from the same pair)."""
@@ -293,10 +311,7 @@ class PoundingModel(Studies):
         with self._batch():
             self.snapshot = snapshot
 
-    @param.depends(*[name for name in (set(design_params()) | set(building_params(1, 1.0)) | set(building_params(2, 1.0))
-                                        | set(excitation_params())) if not name.startswith("stiffness_")],
-                   "seed", watch=True)
-    def _on_input(self):
+    def _on_input(self, *_events) -> None:
         if not self._syncing:
             self.recompute()
 

@@ -13,7 +13,6 @@ from pounding.display_units import display
 from pounding.errors import CaseError, ConvergenceError, SimulationError
 from pounding.units import STANDARD_GRAVITY
 
-from dashboard.display_system import display_system
 from dashboard.messages import message
 from dashboard.runner import Latest
 
@@ -26,7 +25,7 @@ FRAGILITY_POINTS = 20
 def distribution_plot(dashboard, snapshot, units: str, capacity: float):
     from pounding.report.distribution_section import distribution_figure
 
-    studies = tuple(dashboard.model.mc_points)
+    studies = dashboard.model.monte_carlo_points()
     figure = distribution_figure(dataclasses.replace(snapshot, monte_carlo=studies), units)
     top = snapshot.estimate.force_max_distribution.quantile(0.999)
     largest = max((max(m.force_max_values, default=0.0) for m in studies), default=0.0)
@@ -84,7 +83,8 @@ class LazyTabs:
             tabs.append((title, content))
         self.panel = pn.Tabs(*tabs, dynamic=True, sizing_mode="stretch_width", css_classes=["plot-tabs"])
         self.panel.param.watch(lambda _event: self.refresh(), "active")
-        model.param.watch(lambda _event: self.refresh(), ["capacity", "mc_points"])
+        model.param.watch(lambda _event: self.refresh(), "capacity")
+        model.monte_carlo_job.param.watch(lambda _event: self.refresh(), "result")
 
     def refresh(self) -> None:
         """Build the open tab's plot if its inputs changed since it was built."""
@@ -94,11 +94,11 @@ class LazyTabs:
         model = self.dashboard.model
         snapshot = model.snapshot
         kind, holder = self._lazy[index]
-        key = (id(snapshot), model.units, model.capacity, len(model.mc_points))
+        key = (id(snapshot), model.units, model.capacity, len(model.monte_carlo_points()))
         if snapshot is None or self._shown.get(index) == key:
             return
         self._shown[index] = key
-        units, capacity = model.units, display_system(model.units).to_si(model.capacity, force=1)
+        units, capacity = model.units, display(model.units).to_si(model.capacity, force=1)
         build = _BUILDERS[kind]
 
         def work(current, deliver):

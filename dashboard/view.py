@@ -19,11 +19,11 @@ from pathlib import Path
 import panel as pn
 import param
 
+from pounding.display_units import display
 from pounding.report import Figures, case_provenance, write_report
 
-from dashboard.display_system import display_system
 from dashboard.headline import HEADLINE_CSS, headline_html
-from dashboard.inputs import dimensions
+from dashboard.jobs import StudyJob
 from dashboard.model import PoundingModel
 from dashboard.runner import shared_pool
 from dashboard.tabs import LazyTabs
@@ -43,8 +43,8 @@ PAGE_CSS = """
 BUTTON_CSS = ".bk-btn[disabled] { opacity: 0.4 !important; cursor: not-allowed !important; filter: grayscale(100%); }"
 """Inside each button's shadow root: a disabled button greyed out, not a paler colour of an active one."""
 
-_FORMATS = {"G0": "0,0.[000]", "contact_stiffness": "0,0.[000]", "capacity": "0,0.[00]", "mass_1": "0,0.[000]", "mass_2": "0,0.[000]",
-            "stiffness_1": "0,0.[00]", "stiffness_2": "0,0.[00]", "target_probability": "0.[0000]", "pga": "0.[000]", "gap": "0,0.[000]"}
+_FORMATS = {"G0": "0,0.[000]", "contact_stiffness": "0,0.[000]", "capacity": "0,0.[00]", "mass": "0,0.[000]", "stiffness": "0,0.[00]",
+            "target_probability": "0.[0000]", "pga": "0.[000]", "gap": "0,0.[000]"}
 
 
 def _session():
@@ -53,9 +53,11 @@ def _session():
     return doc if doc is not None and doc.session_context is not None else None
 
 
-SHAPING = ("units", "advanced", "contact_model", "ground_motion", "intensity", "code", "scaling", "envelope",
-           "storeys_1", "storeys_2", "hysteresis_1", "hysteresis_2", "n_1", "n_2")
-"""The inputs that decide which others apply or what unit they take: the only ones whose change relabels the page."""
+SHAPING = ("units", "advanced", "contact_model", "ground_motion", "intensity", "code", "scaling", "envelope")
+"""The model's inputs that decide which others apply or what unit they take: with :data:`SHAPING_BUILDING`, the only
+ones whose change relabels the page."""
+SHAPING_BUILDING = ("storeys", "hysteresis", "n")
+"""Each building's inputs that decide which others apply or what unit they take."""
 
 
 class PoundingDashboard(pn.viewable.Viewer):
@@ -79,14 +81,15 @@ class PoundingDashboard(pn.viewable.Viewer):
         super().__init__(**params)
         self._delay = (lambda fn: doc.add_timeout_callback(fn, REDRAW_DELAY_MS)) if doc else (lambda fn: fn())
         self._batch = (lambda: pn.io.hold(doc)) if doc else contextlib.nullcontext
-        self._widgets: dict[str, pn.widgets.Widget] = {}
+        self._widgets: list[tuple[param.Parameterized, str, pn.widgets.Widget]] = []  # (owner, name, widget)
         self._build()
 
     # --- widgets -------------------------------------------------------------------
 
-    def _widget(self, name: str, **options) -> pn.widgets.Widget:
-        m = self.model
-        parameter = m.param[name]
+    def _widget(self, name: str, owner: param.Parameterized | None = None, **options) -> pn.widgets.Widget:
+        """The widget of input ``name`` of ``owner`` (default: the model; else one of its buildings)."""
+        owner = owner or self.model
+        parameter = owner.param[name]
         if isinstance(parameter, param.Boolean):
             kind = pn.widgets.Switch
         elif isinstance(parameter, param.Selector):
@@ -99,19 +102,18 @@ class PoundingDashboard(pn.viewable.Viewer):
         if "description" in kind.param:
             options.setdefault("description", parameter.doc)
         widget = kind.from_param(parameter, sizing_mode="stretch_width", **options)
-        self._widgets[name] = widget
+        self._widgets.append((owner, name, widget))
         return widget
 
-    def _inputs(self, *names: str) -> list:
-        return [self._widget(name) for name in names]
+    def _inputs(self, *names: str, owner: param.Parameterized | None = None) -> list:
+        return [self._widget(name, owner) for name in names]
 
-    def _building_card(self, b: int) -> pn.Card:
-        names = [f"storeys_{b}", f"period_{b}", f"mass_{b}", f"stiffness_{b}", f"damping_ratio_{b}", f"hysteresis_{b}",
-                 f"yield_drift_{b}", f"yield_force_{b}", f"post_yield_ratio_{b}", f"n_{b}", f"beta_share_{b}",
-                 f"alpha_{b}", f"A_{b}", f"beta_{b}", f"gamma_{b}"]
-        widgets = self._inputs(*names)
-        self._widgets[f"stiffness_{b}"].disabled = True
-        return pn.Card(*widgets, title=f"Building {b}", collapsed=True, sizing_mode="stretch_width")
+    def _building_card(self, building) -> pn.Card:
+        names = ("storeys", "period", "mass", "stiffness", "damping_ratio", "hysteresis", "yield_drift", "yield_force",
+                 "post_yield_ratio", "n", "beta_share", "alpha", "A", "beta", "gamma")
+        widgets = self._inputs(*names, owner=building)
+        widgets[names.index("stiffness")].disabled = True  # derived from the period
+        return pn.Card(*widgets, title=f"Building {building.number}", collapsed=True, sizing_mode="stretch_width")
 
     def _build(self) -> None:
         m = self.model
@@ -133,24 +135,25 @@ class PoundingDashboard(pn.viewable.Viewer):
                               visible=pn.bind(lambda form: form == "recorded motions", m.param.ground_motion), sizing_mode="stretch_width"),
                     *self._inputs("duration", "envelope", "B1", "B2"),
                     title="Ground motion", collapsed=True, sizing_mode="stretch_width"),
-            self._building_card(1),
-            self._building_card(2),
-            pn.Card(*self._inputs("level_1", "level_2", "contact_model", "contact_stiffness"), title="Contact", collapsed=True,
-                    sizing_mode="stretch_width"),
+            *(self._building_card(building) for building in m.buildings()),
+            pn.Card(*(self._widget("contact_floor", building) for building in m.buildings()),
+                    *self._inputs("contact_model", "contact_stiffness"), title="Contact", collapsed=True, sizing_mode="stretch_width"),
             pn.Card(self._widget("units"), self._widget("advanced"), self.case_download,
                     pn.pane.Markdown("Upload a case file:", margin=(0, 10)), self.case_upload,
                     title="Units and case file", collapsed=True, sizing_mode="stretch_width"),
             sizing_mode="stretch_width",
         )
-        m.param.watch(self._refresh_inputs, [name for name in SHAPING if name in m.param])
+        m.param.watch(self._refresh_inputs, list(SHAPING))
+        for building in m.buildings():
+            building.param.watch(self._refresh_inputs, list(SHAPING_BUILDING))
         self._refresh_inputs()
 
         self.error = pn.pane.Alert(pn.bind(lambda e: e or "ok", m.param.error), alert_type="danger",
                                    visible=pn.bind(bool, m.param.error), sizing_mode="stretch_width", css_classes=["input-error"])
         self.note = pn.pane.Markdown(m.param.note, css_classes=["change-note"], visible=pn.bind(bool, m.param.note), sizing_mode="stretch_width")
         self.headline = pn.pane.HTML(
-            pn.bind(self._headline, m.param.result, m.param.units, m.param.capacity, m.param.mc_points, m.param.design_gap_result,
-                    m.param.error),
+            pn.bind(self._headline, m.param.result, m.param.units, m.param.capacity, m.monte_carlo_job.param.result,
+                    m.design_gap_job.param.result, m.param.error),
             stylesheets=[HEADLINE_CSS], sizing_mode="stretch_width", min_width=380,
         )
         self.export = pn.widgets.FileDownload(callback=self._export, filename="pounding-report.html", label="Export report (HTML)",
@@ -158,9 +161,11 @@ class PoundingDashboard(pn.viewable.Viewer):
                                               auto=True, embed=False, width=200, stylesheets=[BUTTON_CSS])
 
         self.figures = Figures()
-        self.figures.fill(m.snapshot, m.units, tuple(m.mc_points), m.current_design_gap())
+        self.figures.fill(m.snapshot, m.units, m.monte_carlo_points(), m.current_design_gap())
         self._redraw_pending = False
-        m.param.watch(self._request_redraw, ["snapshot", "units", "mc_points", "design_gap_result"])
+        m.param.watch(self._request_redraw, ["snapshot", "units"])
+        for job in (m.monte_carlo_job, m.design_gap_job):
+            job.param.watch(self._request_redraw, "result")
         bokeh = lambda fig, **kw: pn.pane.Bokeh(fig, sizing_mode="stretch_width", **kw)  # noqa: E731
         gap_figure = self.figures.gap
         gap_figure.height = 340
@@ -187,23 +192,25 @@ class PoundingDashboard(pn.viewable.Viewer):
             sizing_mode="stretch_width",
         )
 
+    def _job_controls(self, job: StudyJob, run, run_label: str, cancel_label: str, css: str) -> tuple:
+        """A study's buttons (run, cancel), its progress bar and its status, bound to its job."""
+        m = self.model
+        button = lambda **options: pn.widgets.Button(stylesheets=[BUTTON_CSS], **options)  # noqa: E731
+        start = button(name=run_label, button_type="primary", disabled=pn.bind(lambda r, s: r or s is None, job.param.running, m.param.result))
+        stop = button(name=cancel_label, button_type="warning", disabled=pn.bind(lambda r: not r, job.param.running))
+        start.on_click(lambda _event: run())
+        stop.on_click(lambda _event: job.cancel())
+        progress = pn.indicators.Progress(value=job.param.progress, max=100, width=260, css_classes=[f"{css}-progress"],
+                                          visible=job.param.running)
+        status = pn.pane.Markdown(job.param.status, css_classes=[f"{css}-status"])
+        return start, stop, progress, status
+
     def _monte_carlo_panel(self) -> pn.Column:
         m = self.model
-        running, design_running = m.param.mc_running, m.param.design_gap_running
-        button = lambda **options: pn.widgets.Button(stylesheets=[BUTTON_CSS], **options)  # noqa: E731
-        self.run = button(name="Run Monte Carlo", button_type="primary", disabled=pn.bind(lambda r, s: r or s is None, running, m.param.result))
-        self.cancel = button(name="Cancel", button_type="warning", disabled=pn.bind(lambda r: not r, running))
-        self.run.on_click(lambda _event: m.run_monte_carlo())
-        self.cancel.on_click(lambda _event: m.cancel_monte_carlo())
-        self.progress = pn.indicators.Progress(value=m.param.mc_progress, max=100, width=260, css_classes=["mc-progress"],
-                                               visible=running)
-        self.run_design_gap = button(name="Monte Carlo design gap", button_type="primary",
-                                     disabled=pn.bind(lambda r, s: r or s is None, design_running, m.param.result))
-        self.cancel_design_gap = button(name="Cancel design gap", button_type="warning", disabled=pn.bind(lambda r: not r, design_running))
-        self.run_design_gap.on_click(lambda _event: m.run_design_gap())
-        self.cancel_design_gap.on_click(lambda _event: m.cancel_design_gap())
-        self.design_gap_progress = pn.indicators.Progress(value=m.param.design_gap_progress, max=100, width=260,
-                                                          css_classes=["design-gap-progress"], visible=design_running)
+        self.run, self.cancel, self.progress, mc_status = self._job_controls(
+            m.monte_carlo_job, m.run_monte_carlo, "Run Monte Carlo", "Cancel", "mc")
+        self.run_design_gap, self.cancel_design_gap, self.design_gap_progress, design_gap_status = self._job_controls(
+            m.design_gap_job, m.run_design_gap, "Monte Carlo design gap", "Cancel design gap", "design-gap")
         records = pn.widgets.IntInput.from_param(m.param.records, width=140, description=m.param.records.doc)
         seed = pn.widgets.IntInput.from_param(m.param.seed, width=120, description=m.param.seed.doc)
         return pn.Column(
@@ -211,22 +218,23 @@ class PoundingDashboard(pn.viewable.Viewer):
                              "F_max with its 95 % interval beside the estimate, and the gap for the target from the records' free motion."),
             pn.Row(records, seed),
             pn.Row(self.run, self.cancel, self.progress),
-            pn.pane.Markdown(m.param.mc_status, css_classes=["mc-status"]),
+            mc_status,
             pn.Row(self.run_design_gap, self.cancel_design_gap, self.design_gap_progress),
-            pn.pane.Markdown(m.param.design_gap_status, css_classes=["design-gap-status"]),
+            design_gap_status,
             sizing_mode="stretch_width",
         )
 
     def _refresh_inputs(self, *_events) -> None:
         """Show the inputs that apply, each labelled with its unit in the system shown."""
         m = self.model
-        dims, shown = dimensions(m), display_system(m.units)
-        for name, widget in self._widgets.items():
+        shown = display(m.units)
+        dims = {owner: owner.dimensions() for owner in (m, *m.buildings())}
+        for owner, name, widget in self._widgets:
             if name in ("preset", "units", "advanced"):
                 continue
-            widget.visible = visible(m, name)
-            label = m.param[name].label
-            widget.name = f"{label} [{shown.label(**dims[name])}]" if name in dims else label
+            widget.visible = visible(m, owner, name)
+            label = owner.param[name].label
+            widget.name = f"{label} [{shown.label(**dims[owner][name])}]" if name in dims[owner] else label
 
     # --- outputs -------------------------------------------------------------------
 
@@ -235,7 +243,7 @@ class PoundingDashboard(pn.viewable.Viewer):
         if result is None:
             text = "No result: the inputs are invalid (see the message above)." if error else "Computing..."
             return f'<div class="headline stale"><p>{text}</p></div>'
-        capacity_si = display_system(units).to_si(capacity, force=1)
+        capacity_si = display(units).to_si(capacity, force=1)
         return headline_html(result, units, capacity_si, m.monte_carlo_for_current_gap(), m.current_design_gap(), m.case_name())
 
     def _request_redraw(self, *_events) -> None:
@@ -247,7 +255,7 @@ class PoundingDashboard(pn.viewable.Viewer):
         self._redraw_pending = False
         m = self.model
         with self._batch():
-            self.figures.fill(m.snapshot, m.units, tuple(m.mc_points), m.current_design_gap())
+            self.figures.fill(m.snapshot, m.units, m.monte_carlo_points(), m.current_design_gap())
         self.tabs.refresh()
 
     def _on_records(self, event) -> None:
@@ -266,11 +274,11 @@ class PoundingDashboard(pn.viewable.Viewer):
         m = self.model
         if m.snapshot is None:
             return None
-        snapshot = replace(m.snapshot, monte_carlo=tuple(m.mc_points), design_gap=m.current_design_gap())
+        snapshot = replace(m.snapshot, monte_carlo=m.monte_carlo_points(), design_gap=m.current_design_gap())
         folder = Path(tempfile.mkdtemp(prefix="pounding-report-"))
         name = f"pounding-report-{m.preset}{'-modified' if m.changes() else ''}.html"
         self.export.filename = name
-        provenance = case_provenance(m.case_data(), m.preset, command="pounding dashboard (Export report)", units=m.units)
+        provenance = case_provenance(m.case_file(), m.preset, command="pounding dashboard (Export report)", units=m.units)
         return str(write_report(folder / name, snapshot, m.units, provenance=provenance))
 
     def template(self) -> pn.template.FastListTemplate:

@@ -1,30 +1,35 @@
 """Which inputs apply as the others stand (a yield drift only where the storeys are given by it, the design
 code's parameters only under a design spectrum, ...), and which are shown: those that apply, the advanced ones
-only with the advanced switch on."""
+only with the advanced switch on. An input is named by its owner (the model, or one of its two
+:class:`~dashboard.inputs.BuildingInputs`) and its parameter's name."""
 
 from __future__ import annotations
 
+from dashboard.inputs import BuildingInputs
+
 __all__ = ["ADVANCED", "applies", "visible"]
 
-ADVANCED = {"contact_model", "contact_stiffness", "n_1", "n_2", "beta_share_1", "beta_share_2", "seed"}
-"""Inputs shown only with the advanced switch (they always apply)."""
+ADVANCED = {"contact_model", "contact_stiffness", "seed", "n", "beta_share"}
+"""Inputs shown only with the advanced switch (they always apply): the contact law, the seed, and each building's
+Bouc-Wen n and beta share."""
 
 _YIELDING = ("yield drift", "yield force")
 
 
-def _storey_input_applies(model, name: str) -> bool:
-    key, b = name.rsplit("_", 1)
-    form = getattr(model, f"hysteresis_{b}")
-    if key == "yield_drift":
+def _storey_input_applies(model, building: BuildingInputs, name: str) -> bool:
+    form = building.hysteresis
+    if name == "yield_drift":
         return form == "yield drift"
-    if key == "yield_force":
+    if name == "yield_force":
         return form == "yield force"
-    if key in ("post_yield_ratio", "beta_share"):
+    if name in ("post_yield_ratio", "beta_share"):
         return form in _YIELDING
-    if key == "n":
+    if name == "n":
         return form in _YIELDING or form == "Bouc-Wen"
-    if key in ("alpha", "A", "beta", "gamma"):
+    if name in ("alpha", "A", "beta", "gamma"):
         return form == "Bouc-Wen"
+    if name == "contact_floor":
+        return max(model.building_1.storeys, model.building_2.storeys) > 1
     return True
 
 
@@ -56,22 +61,14 @@ def _excitation_input_applies(model, name: str) -> bool:
     return True
 
 
-_EXCITATION = {"duration", "envelope", "B1", "B2", "intensity", "omega_g", "xi_g", "pga", "G0", "code", "ag", "ground_type",
-               "spectrum_type", "SDS", "SD1", "TL", "scaling", "scale", "records_pga"}
-_STOREY = {"yield_drift", "yield_force", "post_yield_ratio", "beta_share", "n", "alpha", "A", "beta", "gamma"}
+def applies(model, owner, name: str) -> bool:
+    """Whether input ``name`` of ``owner`` (``model`` or one of its buildings) enters the case as the other
+    inputs stand."""
+    if isinstance(owner, BuildingInputs):
+        return _storey_input_applies(model, owner, name)
+    return _excitation_input_applies(model, name)
 
 
-def applies(model, name: str) -> bool:
-    """Whether input ``name`` enters the case as the other inputs stand."""
-    if name in _EXCITATION:
-        return _excitation_input_applies(model, name)
-    if name.rsplit("_", 1)[0] in _STOREY and name[-1] in "12":
-        return _storey_input_applies(model, name)
-    if name in ("level_1", "level_2"):
-        return max(model.storeys_1, model.storeys_2) > 1
-    return True
-
-
-def visible(model, name: str) -> bool:
-    """Whether input ``name`` is shown."""
-    return applies(model, name) and (model.advanced or name not in ADVANCED)
+def visible(model, owner, name: str) -> bool:
+    """Whether input ``name`` of ``owner`` is shown."""
+    return applies(model, owner, name) and (model.advanced or name not in ADVANCED)

@@ -3,7 +3,6 @@ file, bad inputs are named, the newest request wins, and the studies run, cancel
 
 from __future__ import annotations
 
-import math
 import threading
 import time
 import tomllib
@@ -45,9 +44,9 @@ def test_every_preset_gives_the_librarys_estimate(name):
 def test_a_unit_switch_keeps_the_case_and_shows_mm_kn_t_or_the_papers_units():
     model = PoundingModel()
     before = _force(model)
-    assert model.gap == pytest.approx(10.0) and model.mass_1 == pytest.approx(39.240095758777665)  # mm, t
+    assert model.gap == pytest.approx(10.0) and model.building_1.mass == pytest.approx(39.240095758777665)  # mm, t
     model.units = "kgf-cm-s"
-    assert model.gap == pytest.approx(1.0) and model.G0 == pytest.approx(65.03) and model.yield_drift_1 == pytest.approx(1.0)
+    assert model.gap == pytest.approx(1.0) and model.G0 == pytest.approx(65.03) and model.building_1.yield_drift == pytest.approx(1.0)
     assert _force(model) == pytest.approx(before, rel=1e-9)
     model.units = "SI"
     assert model.changes() == [] and _force(model) == pytest.approx(before, rel=1e-9)
@@ -55,13 +54,13 @@ def test_a_unit_switch_keeps_the_case_and_shows_mm_kn_t_or_the_papers_units():
 
 def test_more_storeys_keep_the_fundamental_period_and_say_so():
     model = PoundingModel()
-    model.storeys_1 = 3
+    model.building_1.storeys = 3
     case = model.build_case()
     assert case.buildings[0].n_storeys == 3 and case.buildings[0].periods[0] == pytest.approx(1.2, rel=1e-12)
     assert "T1 = 1.2 s" in model.note and "kept" in model.note
-    model.level_1 = 3
-    model.storeys_1 = 2  # the contact floor no longer exists: it moves, and the page says so
-    assert model.level_1 == 2 and "contact floor moved to 2" in model.note
+    model.building_1.contact_floor = 3
+    model.building_1.storeys = 2  # the contact floor no longer exists: it moves, and the page says so
+    assert model.building_1.contact_floor == 2 and "contact floor moved to 2" in model.note
     assert model.error == "" and model.result.case.contact.levels == (2, 1)
 
 
@@ -76,10 +75,10 @@ def test_chain_stiffness_gives_the_period():
 def test_yield_force_and_yield_drift_are_the_same_storey():
     model = PoundingModel()
     by_drift = _force(model)
-    model.yield_force_1 = model.stiffness_1 * model.yield_drift_1  # kN = kN/mm x mm
-    model.hysteresis_1 = "yield force"
+    model.building_1.yield_force = model.building_1.stiffness * model.building_1.yield_drift  # kN = kN/mm x mm
+    model.building_1.hysteresis = "yield force"
     assert _force(model) == pytest.approx(by_drift, rel=1e-9)
-    model.hysteresis_1 = "elastic"
+    model.building_1.hysteresis = "elastic"
     assert model.build_case().buildings[0].storeys[0].bouc_wen.alpha == 1.0
 
 
@@ -135,7 +134,8 @@ def test_a_malformed_record_is_named_and_no_number_is_left(tmp_path):
 
 def test_the_case_downloads_and_uploads_as_toml():
     model = PoundingModel()
-    model.param.update(gap=25.0, period_2=0.55, restitution=0.7)
+    model.param.update(gap=25.0, restitution=0.7)
+    model.building_2.period = 0.55
     force = _force(model)
     text = model.toml()
     assert case_from_dict(tomllib.loads(text)).contact.gap == pytest.approx(0.025)
@@ -148,11 +148,13 @@ def test_the_case_downloads_and_uploads_as_toml():
 
 def test_changes_from_the_preset_are_listed_and_name_the_case():
     model = PoundingModel()
-    model.param.update(gap=20.0, period_2=0.5)
+    model.param.update(gap=20.0)
+    model.building_2.period = 0.5
     assert {(label, before, after, unit) for label, before, after, unit in model.changes()} == {
         ("gap", 10.0, 20.0, "mm"), ("fundamental period T2 [s]", 0.4, 0.5, "")}
     assert model.case_name() == f"{DEFAULT} (modified)"
-    model.param.update(gap=10.0, period_2=0.4)
+    model.param.update(gap=10.0)
+    model.building_2.period = 0.4
     assert model.changes() == [] and model.case_name() == DEFAULT
 
 
@@ -161,8 +163,8 @@ def test_bad_combinations_are_named_by_the_case_files_key():
     model.B1 = 0.3  # above B2
     assert model.result is None and "excitation.B2" in model.error
     model.B1 = 0.085
-    model.level_2 = 3
-    assert "contact.levels" in model.error or model.level_2 == 1
+    model.building_2.contact_floor = 3
+    assert "contact.levels" in model.error or model.building_2.contact_floor == 1
 
 
 def test_the_newest_request_runs_and_a_stale_one_stops():
@@ -227,13 +229,13 @@ def _wait_until(done, timeout=60.0):
 def test_monte_carlo_runs_gives_a_verdict_and_a_change_makes_it_stale():
     model = PoundingModel(records=10)
     model.run_monte_carlo()
-    _wait_until(lambda: not model.mc_running)
+    _wait_until(lambda: not model.monte_carlo_job.running)
     point = model.monte_carlo_for_current_gap()
     assert point is not None and point.records == 10 and point.force_low <= point.force_max_mean <= point.force_high
     page = headline_html(model.result, "SI", monte_carlo=point)
     assert monte_carlo_check(model.result.force_expected, point).text in page
     model.restitution = 0.6  # another case: the study is no longer shown
-    assert model.monte_carlo_for_current_gap() is None and model.mc_points == []
+    assert model.monte_carlo_for_current_gap() is None and model.monte_carlo_points() == ()
 
 
 def test_a_failed_study_is_reported(monkeypatch):
@@ -250,25 +252,26 @@ def test_a_failed_study_is_reported(monkeypatch):
         pending.pop(0)()
     model.run_monte_carlo()
     deadline = time.monotonic() + 30
-    while model.mc_running and time.monotonic() < deadline:
+    while model.monte_carlo_job.running and time.monotonic() < deadline:
         while pending:
             pending.pop(0)()
         time.sleep(0.02)
-    assert not model.mc_running and "record 3" in model.mc_status and model.monte_carlo_for_current_gap() is None
+    assert not model.monte_carlo_job.running and "record 3" in model.monte_carlo_job.status
+    assert "record 3" in model.monte_carlo_job.error and model.monte_carlo_for_current_gap() is None
 
 
 def test_design_gap_is_the_librarys_holds_at_any_gap_and_goes_with_a_building(monkeypatch):
     model = PoundingModel(records=RECORDS, seed=3)
     model.run_design_gap()
-    _wait_until(lambda: not model.design_gap_running)
+    _wait_until(lambda: not model.design_gap_job.running)
     result = model.current_design_gap()
     expected = design_gap(model.snapshot.case, 0.95, records=RECORDS, seed=3)
     assert (result.gap, result.seed) == (expected.gap, 3)
     model.gap = 2 * model.gap
     model.units = "kgf-cm-s"
     assert model.current_design_gap() is result
-    model.period_2 = 0.5
-    assert model.current_design_gap() is None and model.design_gap_status == "Monte Carlo design gap cleared: the inputs changed."
+    model.building_2.period = 0.5
+    assert model.current_design_gap() is None and model.design_gap_job.status == "Monte Carlo design gap cleared: the inputs changed."
 
 
 def test_design_gap_cancel_stops_it(monkeypatch):
@@ -291,7 +294,80 @@ def test_design_gap_cancel_stops_it(monkeypatch):
     monkeypatch.setattr(module, "design_gap", gated)
     model = PoundingModel(records=RECORDS)
     model.run_design_gap()
-    assert model.design_gap_running
-    model.cancel_design_gap()
-    _wait_until(lambda: not model.design_gap_running)
-    assert calls == ["cancelled"] and model.design_gap_result is None and model.design_gap_status == "Monte Carlo design gap cancelled."
+    assert model.design_gap_job.running
+    model.design_gap_job.cancel()
+    _wait_until(lambda: not model.design_gap_job.running)
+    assert calls == ["cancelled"] and model.design_gap_job.result is None and model.design_gap_job.status == "Monte Carlo design gap cancelled."
+
+
+# --- each building's inputs, and the jobs ---------------------------------------------
+
+
+def test_each_building_has_its_own_inputs():
+    """A change of building 2's yield drift is building 2's only: building 1's table, the ground motion and the
+    contact of the case file stay as they were, and another model's buildings are other objects."""
+    model = PoundingModel()
+    before = model.case_file()
+    assert model.building_2.hysteresis == "yield drift"
+    model.building_2.yield_drift = 2 * model.building_2.yield_drift  # mm
+    after = model.case_file()
+    assert after["buildings"][0] == before["buildings"][0]
+    assert (after["excitation"], after["contact"]) == (before["excitation"], before["contact"])
+    drifts = [storey["hysteresis"]["yield_drift"] for storey in after["buildings"][1]["storeys"]]
+    old = [storey["hysteresis"]["yield_drift"] for storey in before["buildings"][1]["storeys"]]
+    assert drifts == pytest.approx([2 * d for d in old])
+    assert model.build_case().buildings[1].storeys[0].yield_drift == pytest.approx(2 * load_case(DEFAULT).buildings[1].storeys[0].yield_drift)
+    assert model.building_1.param.period.label == "fundamental period T1 [s]" != model.building_2.param.period.label
+    other = PoundingModel()
+    assert other.building_2 is not model.building_2 and other.building_2.yield_drift != model.building_2.yield_drift
+
+
+def test_a_contact_floor_is_its_buildings():
+    model = PoundingModel()
+    model.building_2.storeys = 4
+    model.building_2.contact_floor = 3
+    assert model.error == "" and model.result.case.contact.levels == (1, 3)
+    assert model.case_file()["contact"]["levels"] == [1, 3]
+
+
+def _gated_study(started: threading.Event):
+    """A study that runs until cancelled, as the library's do: it checks its event between chunks."""
+
+    def study(progress, cancel):
+        started.set()
+        for done in range(1, 10_000):
+            if cancel.wait(0.01):
+                raise Cancelled()
+            progress(done, 10_000)
+        return None
+
+    return study
+
+
+def test_a_jobs_cancel_stops_it():
+    from dashboard.jobs import StudyJob
+
+    job = StudyJob(title="Monte Carlo")
+    started = threading.Event()
+    assert job.start(_gated_study(started), 10_000)
+    assert started.wait(10) and job.running
+    assert not job.start(_gated_study(threading.Event()), 10)  # one study at a time
+    job.cancel()
+    _wait_until(lambda: not job.running)
+    assert job.result is None and job.error == "" and job.status == "Monte Carlo cancelled." and job.progress == 0
+
+
+def test_a_jobs_error_shows_in_the_pages_terms():
+    """A failure is kept as one sentence naming the input as the page does: no command-line option in it."""
+    from pounding.errors import CaseError
+
+    from dashboard.jobs import StudyJob
+
+    def study(progress, cancel):
+        raise CaseError("--records", "the case has 3 recorded motions; records 0..49 are not all among them")
+
+    job = StudyJob(title="Monte Carlo")
+    job.start(study, 50)
+    _wait_until(lambda: not job.running)
+    assert job.result is None and "3 recorded motions" in job.error and "--" not in job.error
+    assert job.error in job.status and job.status.startswith("Monte Carlo failed")

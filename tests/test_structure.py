@@ -187,3 +187,40 @@ def test_every_data_file_of_the_package_is_in_the_wheel():
     assert data and all(any(fnmatch.fnmatch(name, pattern) for pattern in patterns) for name in data)
 
 
+
+
+ENTRY_POINTS = {"main"}
+"""``main`` is the entry point of each runnable module (the command line, the dashboard's server, an exported
+OpenSeesPy model): one per program, not a concept defined twice."""
+
+
+def _public_definitions(path: Path) -> list[str]:
+    """The public functions, classes and upper-case constants a module defines at its top level."""
+    names = []
+    for node in ast.parse(path.read_text()).body:
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            names.append(node.name)
+        elif isinstance(node, (ast.Assign, ast.AnnAssign)):
+            targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+            names += [t.id for t in targets if isinstance(t, ast.Name) and t.id.isupper()]
+    return [n for n in names if not n.startswith("_") and n not in ENTRY_POINTS]
+
+
+def _defined_twice(modules: dict[str, Path]) -> dict[str, list[str]]:
+    where: dict[str, list[str]] = {}
+    for name, path in sorted(modules.items()):
+        for definition in _public_definitions(path):
+            where.setdefault(definition, []).append(name)
+    return {definition: places for definition, places in where.items() if len(places) > 1}
+
+
+def test_no_public_name_is_defined_in_two_modules():
+    """One name per concept: a public function, class or constant is defined once; the others import it."""
+    assert _defined_twice(_modules()) == {}
+
+
+def test_the_duplicate_finder_finds_a_duplicate(tmp_path):
+    (tmp_path / "a.py").write_text("LIMIT = 20\ndef expected_peak():\n    pass\n")
+    (tmp_path / "b.py").write_text("LIMIT = 10\nclass Other:\n    pass\ndef expected_peak():\n    pass\n")
+    found = _defined_twice({"a": tmp_path / "a.py", "b": tmp_path / "b.py"})
+    assert found == {"LIMIT": ["a", "b"], "expected_peak": ["a", "b"]}
