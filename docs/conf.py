@@ -37,3 +37,30 @@ myst_heading_anchors = 3  # the pages link to each other's sections by their Git
 html_theme = "alabaster"
 html_title = "pounding"
 html_show_sourcelink = False
+
+
+
+# ``.. public-names::`` lists ``from pounding import ...`` (pounding._EXPORTS), each linked to where it is defined.
+import inspect  # noqa: E402
+
+from docutils import nodes  # noqa: E402
+from docutils.statemachine import StringList  # noqa: E402
+from sphinx.util.docutils import SphinxDirective  # noqa: E402
+
+
+class PublicNames(SphinxDirective):
+    def run(self):
+        import pounding
+
+        lines = []
+        for name in sorted(pounding._EXPORTS, key=str.lower):
+            value = getattr(pounding, name)
+            role = ("exc" if issubclass(value, BaseException) else "class") if inspect.isclass(value) else "func"
+            lines.append(f"- ``{name}``: :{role}:`{value.__module__}.{name}`")
+        node = nodes.container()
+        self.state.nested_parse(StringList(lines, source="pounding._EXPORTS"), self.content_offset, node)
+        return node.children
+
+
+def setup(app):
+    app.add_directive("public-names", PublicNames)
