@@ -35,7 +35,7 @@ class PeakGroundAcceleration:
 
     A random process (Kanai-Tajimi, Clough-Penzien, a design spectrum's filter
     bank) has its intensity G0 scaled by (pga / E[PGA])^2: E[PGA] of its records
-    (G29) grows as sqrt(G0) (G30). Recorded motions are each scaled to peak |a| =
+    (G29) grows as sqrt(G0) (G30). Recorded motions are each scaled to peak ``|a|`` =
     pga, and the spectrum fitted to them (R1-R6) is fitted once, to the suite
     scaled to one common peak, and then scaled by (pga / that peak)^2, as
     scaling every record by a factor scales its periodogram by the factor squared.

@@ -88,7 +88,7 @@ class Estimate:
         The dashpot between the contact floors that damps the relative motion
         alike [N s/m].
     separation_rules : dict
-        Gaps by the SRSS, ABS and DDC rules [m] from the expected peak |x| of
+        Gaps by the SRSS, ABS and DDC rules [m] from the expected peak ``|x|`` of
         each contact floor (``peak_displacement`` [m]: the linearized floor from
         rest with Vanmarcke's clumps, :func:`~pounding.random_vibration.peaks.expected_absolute_peak`)
         and their stationary correlation (``displacement_correlation`` [-]).

@@ -27,7 +27,7 @@ results"):
   such that sigma_V^2 falls to R times the free one. The dashpot feeds back on X
   alone, so whatever drives the pair, X_c(w) = X(w) / (1 + c G(w)),
   G(w) = i w (R_1(w) + R_2(w)), R_b the receptance of building b's contact
-  floor: the spectrum of X is divided by |1 + c G|^2, which gives the damped
+  floor: the spectrum of X is divided by ``|1 + c G|^2``, which gives the damped
   sigma_X and bandwidth too. nu and rho depend on the damped sigmas; the fixed
   point is solved for each gap.
 

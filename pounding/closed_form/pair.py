@@ -222,7 +222,7 @@ class LinearizedPair:
                          for b, (h, _) in enumerate(self.contact_floor_frfs, start=1)])
 
     def psd_relative_velocity(self, omega) -> np.ndarray:
-        """Two-sided PSD of V = v1 - v2 at the contact floors, w^2 |H1 - H2|^2 S_g(w)
+        """Two-sided PSD of V = v1 - v2 at the contact floors, w^2 ``|H1 - H2|^2`` S_g(w)
         [m^2/s], whose integral over (-inf, inf) is sigma_V^2 (Eq. 16-18);
         ``omega`` [rad/s]."""
         omega = np.asarray(omega, dtype=float)

@@ -210,7 +210,7 @@ def frequency_response(linearized: LinearizedBuilding, omega) -> np.ndarray:
 
     Eq. 19 gives z = c_e i w u / (i w - k_e) per storey, so the storey force is
     k_dyn(w) u with k_dyn = alpha k + (1 - alpha) k c_e i w / (i w - k_e) + i w c;
-    then (-w^2 M + T^T diag(k_dyn) T) H = -M 1. For one storey |H|^2 is Eq. 22,
+    then (-w^2 M + T^T diag(k_dyn) T) H = -M 1. For one storey ``|H|^2`` is Eq. 22,
     which prints only the modulus: the cross terms of Eq. 18 and 25 need the
     complex H of each building (docs/errata.md, E7).
 
@@ -260,10 +260,11 @@ def band_covariance(case, linearized, low: float, high: float) -> np.ndarray:
 
 
 def response_frequency(case, linearized, model: StateSpace, rtol: float = 1e-10) -> ContactResponse:
-    """Contact-floor response by frequency-domain integrals (Eq. 17-18, 25).
+    """Contact-floor response by frequency-domain integrals (Eq. 17-18, 25)::
 
-    E[Y_i Y_j] = int_(-inf)^(inf) H_i conj(H_j) S_g d omega
-               = 2 int_0^inf Re(H_i conj(H_j)) S_g d omega,
+        E[Y_i Y_j] = int_(-inf)^(inf) H_i conj(H_j) S_g d omega
+                   = 2 int_0^inf Re(H_i conj(H_j)) S_g d omega,
+
     since H(-w) = conj(H(w)); velocities and accelerations have FRFs i w H and
     -w^2 H. Integrated adaptively (``scipy.integrate.quad_vec``) over [0, inf)
     with breakpoints at the natural frequencies of the linearized pair and the

@@ -1,5 +1,5 @@
 """The separation rules beside the design gap (docs/theory.md, G23-G25): SRSS,
-ABS and DDC combinations of each contact floor's expected peak |x|, the
+ABS and DDC combinations of each contact floor's expected peak ``|x|``, the
 linearized floor's sigmas from rest with Vanmarcke's clumps. The floors'
 sigmas are the linearized ones, without the residual's response: chosen by
 looking at Monte Carlo results, where with it the peaks went higher still
@@ -18,7 +18,7 @@ __all__ = ["separation_rules"]
 
 def separation_rules(pair) -> dict:
     """SRSS, ABS and DDC gaps [m] of a :class:`~pounding.closed_form.pair.LinearizedPair`
-    from the expected peak |displacement| of each contact floor
+    from the expected peak ``|displacement|`` of each contact floor
     (``peak_displacement`` [m], :func:`~pounding.random_vibration.peaks.expected_absolute_peak`
     on the covariance history from rest) and their stationary correlation
     (``displacement_correlation`` [-], used by DDC)."""

@@ -99,7 +99,7 @@ class Accelerogram:
 
     @property
     def peak(self) -> float:
-        """Peak ground acceleration max |a| [m/s^2]."""
+        """Peak ground acceleration max ``|a|`` [m/s^2]."""
         return float(np.max(np.abs(self.acceleration)))
 
     def times(self) -> np.ndarray:
@@ -311,7 +311,7 @@ def _relative(path: Path, base: Path) -> str:
 def read_records(patterns, base_directory, scale=None, pga=None, field: str = "excitation.records") -> tuple[Accelerogram, ...]:
     """The accelerograms of :func:`expand_records`, in its order, each named by
     its path relative to ``base_directory``; times ``scale`` (> 0), or each
-    scaled so that its peak |a| equals ``pga`` [m/s^2] (not both)."""
+    scaled so that its peak ``|a|`` equals ``pga`` [m/s^2] (not both)."""
     if scale is not None and pga is not None:
         raise CaseError(_sibling(field, "pga"), "give scale or pga, not both")
     for key, value in (("scale", scale), ("pga", pga)):

@@ -1,8 +1,8 @@
 """A power spectral density compatible with a design spectrum, as a FilterBank.
 
 C1  The 5 %-damped oscillator x'' + 2 xi w_n x' + w_n^2 x = -a_g, at rest at t = 0, has the
-    stationary displacement moments lambda_k = int_0^omega_c omega^k G(omega) |H(omega)|^2 d omega,
-    |H|^2 = 1 / ((w_n^2 - omega^2)^2 + (2 xi w_n omega)^2), G = 2 S_g the one-sided PSD cut at
+    stationary displacement moments lambda_k = int_0^omega_c omega^k G(omega) ``|H(omega)|^2`` d omega,
+    ``|H|^2`` = 1 / ((w_n^2 - omega^2)^2 + (2 xi w_n omega)^2), G = 2 S_g the one-sided PSD cut at
     the records' cutoff omega_c (log grid, trapezoidal rule); nu0 and delta from them
     (pounding.random_vibration.peak_factors, P2).
 C2  Its variance builds up from rest as d sigma^2/dt = 2 xi w_n (A(t)^2 lambda_0 - sigma^2):
@@ -11,16 +11,20 @@ C2  Its variance builds up from rest as d sigma^2/dt = 2 xi w_n (A(t)^2 lambda_0
     relaxation Michaelov et al. (2001) use under an envelope. Solved exactly on the time
     grid for A^2 linear between instants: with h the step and e = exp(-2 xi w_n h),
     v_(i+1) = f_(i+1) + (v_i - f_i) e - (f_(i+1) - f_i) (1 - e) / (2 xi w_n h).
-C3  Sa(T) = w_n^2 E[max |x|] by Vanmarcke's clumped crossings (P3-P4) with the envelope's
+C3  Sa(T) = w_n^2 E[max ``|x|``] by Vanmarcke's clumped crossings (P3-P4) with the envelope's
     growth sigma' / sigma = 2 xi w_n (A^2 lambda_0 - sigma^2) / (2 sigma^2) (P7), over the
     record (the peak within the record, as a time-domain analysis of the record finds it), with the
     exponent of delta in the clump factor COMPATIBLE_CLUMP_EXPONENT = 1.1 in place of Vanmarcke's 1.2 (fitted:
     see COMPATIBLE_CLUMP_EXPONENT).
-C4  Starting PSD, Cacciola, Colajanni & Muscolino (2004), Eq. 26 there (Vanmarcke 1976):
+
+C4  Starting PSD, Cacciola, Colajanni & Muscolino (2004), Eq. 26 there (Vanmarcke 1976)::
+
         G(w_i) = 4 xi / (w_i pi - 4 xi w_(i-1)) (Sa(w_i)^2 / eta_i^2 - int_0^(w_(i-1)) G d omega),
+
     eta_i = sqrt(2 ln(2 N_i (1 - exp(-delta^1.2 sqrt(pi ln(2 N_i)))))), N_i = T_s w_i / (2 pi (-ln 0.5)),
     delta = sqrt(1 - (1 - (2 / pi) atan(xi / sqrt(1 - xi^2)))^2 / (1 - xi^2)) (the oscillator's
     bandwidth under white noise); G = 0 below w_a, clipped at 0.
+
 C5  The bank (pounding.hazard.filter_bank, G27): K band-pass components at log-spaced centres from
     2 pi / 8 s to the cutoff, damping BANK_DAMPING each. Its first weights >= 0 fit C4's G by
     non-negative least squares of the relative misfit sum_j (G_bank(w_j) / max(G(w_j), G_max / 100) - 1)^2.
@@ -28,8 +32,8 @@ C6  The oscillator's lambda_0 is linear in the weights, lambda_0,p = sum_k V_pk 
     variance of oscillator p under component k of unit weight, C1), and Sa_p = w_p^2 eta_p
     sqrt(lambda_0,p) with eta_p the peak factor of C3, which depends on the weights only through
     nu0 and delta (slowly). So iterate: eta_p from the current bank (C3); the weights minimizing
-    max_p |w_p^4 eta_p^2 (V w)_p / Sa_target,p^2 - 1| (a linear programme, w >= 0); until
-    max |Sa_bank / Sa_target - 1| <= TOLERANCE or it stops improving (4-6 iterations). This is
+    max_p ``|w_p^4 eta_p^2 (V w)_p / Sa_target,p^2 - 1|`` (a linear programme, w >= 0); until
+    max ``|Sa_bank / Sa_target - 1|`` <= TOLERANCE or it stops improving (4-6 iterations). This is
     the ratio iteration of pyrvt's CompatibleRvtMotion (G <- G (Sa_target / Sa)^2) carried to
     the bank's weights: iterating on a free G and refitting the bank after each step does not
     converge, because the bank cannot follow the G that matches a code's corners. The bank is
@@ -85,7 +89,7 @@ oscillator's response is narrow-band (delta ~ 0.15, at a design spectrum's corne
 10 s records (up to 7 % low at 2-2.5 s)."""
 ITERATIONS_MAX = 12
 TOLERANCE = 0.01
-"""C6 stops at this max |Sa_bank / Sa_target - 1|, or when an iteration improves it by less than a tenth of it."""
+"""C6 stops at this max ``|Sa_bank / Sa_target - 1|``, or when an iteration improves it by less than a tenth of it."""
 
 
 def _moments(omega, weights, periods, damping):
@@ -217,7 +221,7 @@ class CompatibleSpectrum:
 
     @property
     def misfit(self) -> float:
-        """max |expected / target - 1| over the control periods [-]."""
+        """max ``|expected / target - 1|`` over the control periods [-]."""
         return float(np.max(np.abs(np.asarray(self.expected) / np.asarray(self.target) - 1.0)))
 
     def excitation(self) -> Excitation:

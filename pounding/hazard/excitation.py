@@ -86,7 +86,7 @@ class KanaiTajimi:
         _positive(self, "xi_g", FILTER_DAMPING_MAX)
 
     def filter_response(self, omega):
-        """|H_g(omega)|^2 of the soil filter (the fraction in Eq. 7) [-]."""
+        """``|H_g(omega)|^2`` of the soil filter (the fraction in Eq. 7) [-]."""
         w2 = np.square(omega)
         wg2 = self.omega_g**2
         four_xi2_wg2 = 4.0 * self.xi_g**2 * wg2

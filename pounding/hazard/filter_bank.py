@@ -2,12 +2,12 @@
 spectrum that stands for a tabulated one (a design spectrum's compatible PSD).
 
 Component k is x_k'' + 2 xi_k omega_k x_k' + omega_k^2 x_k = w_k, output
-2 xi_k omega_k x_k', so |H_k(omega)|^2 = (2 xi_k omega_k omega)^2 /
+2 xi_k omega_k x_k', so ``|H_k(omega)|^2`` = (2 xi_k omega_k omega)^2 /
 ((omega_k^2 - omega^2)^2 + (2 xi_k omega_k omega)^2): 1 at omega_k, zero at
 omega = 0, falling as 1/omega^2 above. The ground acceleration is the sum of
 the outputs, the w_k independent of two-sided intensities G0 w_k, so
 
-    S_g(omega) = G0 sum_k w_k |H_k(omega)|^2          (docs/theory.md, G27)
+    S_g(omega) = G0 sum_k w_k ``|H_k(omega)|^2``          (docs/theory.md, G27)
 
 and the linear pipeline (Lyapunov, covariance from rest) takes the bank as
 one filter with as many noise inputs as components.
@@ -36,7 +36,7 @@ class FilterBank:
     ----------
     G0 : float
         Intensity [m^2/s^3]: the PSD is G0 times the weighted sum of the
-        components' |H_k|^2 (the weights are dimensionless).
+        components' ``|H_k|^2`` (the weights are dimensionless).
     frequencies : tuple of float
         Centre frequencies omega_k [rad/s], > 0.
     damping : tuple of float
@@ -67,7 +67,7 @@ class FilterBank:
             raise CaseError("weights", "must be >= 0 and not all zero")
 
     def component_responses(self, omega) -> np.ndarray:
-        """|H_k(omega)|^2, one row per component [-]."""
+        """``|H_k(omega)|^2``, one row per component [-]."""
         w = np.asarray(omega, dtype=float)[None, ...]
         centre = np.asarray(self.frequencies).reshape((-1,) + (1,) * (w.ndim - 1))
         xi = np.asarray(self.damping).reshape(centre.shape)

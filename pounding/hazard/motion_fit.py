@@ -10,7 +10,7 @@ The method (equations R1 to R6):
   t_95, tapered by a Tukey window w_k: a half cosine over TAPER / 2 = 25 % of
   them at each end, which keeps the leakage of the spectrum's peak out of its
   steep low-frequency side):
-  S_i(w) = |dt sum_k w_k a_k exp(-i w t_k)|^2 / (2 pi D_i mean(w_k^2)),
+  S_i(w) = ``|dt sum_k w_k a_k exp(-i w t_k)|^2`` / (2 pi D_i mean(w_k^2)),
   two-sided [m^2/s^3], so that its integral over (-inf, inf) is the (taper-
   weighted) mean square of a over D_i.
 - R4, the suite's mean: each S_i averaged within frequency bins, the bins'

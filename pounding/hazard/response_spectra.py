@@ -15,7 +15,7 @@ __all__ = ["pseudo_acceleration_spectrum"]
 
 
 def pseudo_acceleration_spectrum(accelerations, time_step: float, periods, damping: float = 0.05) -> np.ndarray:
-    """Pseudo-spectral acceleration (2 pi / T)^2 max |u| [m/s^2] of each record (rows of
+    """Pseudo-spectral acceleration (2 pi / T)^2 max ``|u|`` [m/s^2] of each record (rows of
     ``accelerations`` [m/s^2], sampled every ``time_step`` [s]) at ``periods`` [s]: shape (records, periods)."""
     import pyrotd
 

@@ -72,7 +72,7 @@ class BoucWen:
 
     @property
     def yield_displacement(self) -> float:
-        """(A / (beta + gamma))^(1/n) [m], Eq. 33: the bound of |z|."""
+        """(A / (beta + gamma))^(1/n) [m], Eq. 33: the bound of ``|z|``."""
         return (self.A / (self.beta + self.gamma)) ** (1.0 / self.n)
 
     @classmethod

@@ -177,7 +177,7 @@ def jump_memory(rate, frequency, rates, x_modes, v_modes):
 
 @njit(cache=True, nogil=True)
 def spectral_sums(c, weights, psd, psd_omega, psd_omega2, feedback_re, feedback_im):
-    """int G_X w^k / |1 + c G|^2 for k = 0, 1, 2 (trapezoid weights)."""
+    """int G_X w^k / ``|1 + c G|^2`` for k = 0, 1, 2 (trapezoid weights)."""
     s0 = 0.0
     s1 = 0.0
     s2 = 0.0
@@ -217,7 +217,7 @@ def solve_dashpots(gaps, sigma_x, sigma_v, frequency, restitution, dissipation, 
     """c with g(c) = 0 for each gap (:func:`_mismatch`), by a safeguarded secant
     (Illinois) in units of the energy balance's m (1 - e^2) nu, bracketed from
     g(0) = 1 - R >= 0. Where g(0) is below 1e-12 or that unit's largest feedback
-    c |G| below 1e-10, the impacts change nothing: c = 0.
+    c ``|G|`` below 1e-10, the impacts change nothing: c = 0.
 
     One row per gap: c, sigma_X ratio, sigma_V ratio, bandwidth, rho; c = -1
     marks a gap where no fixed point was found (raised by the caller). Each gap

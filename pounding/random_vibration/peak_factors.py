@@ -8,13 +8,18 @@ P2  nu0 = sqrt(lambda_2 / lambda_0) / (2 pi) [1/s] (Rice's zero-upcrossing rate)
     delta = sqrt(1 - lambda_1^2 / (lambda_0 lambda_2)) (Vanmarcke's bandwidth).
 P3  Crossings of the double barrier +-u at r = u / sigma(t), in clumps (Vanmarcke 1975,
     Eq. 25 there with delta_e = delta^1.2; pounding.random_vibration.peaks and pounding.random_vibration.crossing_kernels
-    use the same clump factor, capped at 1):
+    use the same clump factor, capped at 1)::
+
         nu(u, t) = 2 nu0 exp(-r^2 / 2) min(1, (1 - exp(-sqrt(pi / 2) delta^1.2 r)) / (1 - exp(-r^2 / 2))).
-P4  The clumps as a Poisson process, the process at rest at t = 0:
+
+P4  The clumps as a Poisson process, the process at rest at t = 0::
+
         P(max |x| <= u) = exp(-N(u)),  N(u) = int_0^T nu(u, t) dt,
         E[max |x|] = int_0^inf (1 - exp(-N(u))) du,
+
     both integrals by the trapezoidal rule (u from 0 to where fewer than 1e-5 crossings
     are expected).
+
 P5  A sampled record's peak is the largest of its samples x_k = x(k dt), not of the
     continuous process: count the crossings of the sampled sequence instead. With rho the
     correlation of consecutive samples (rho = sum_j G_j d omega cos(omega_j dt) / lambda_0),
@@ -30,8 +35,10 @@ P6  Peak ground acceleration: P4-P5 (and P7 with sigma'/sigma = A'/A) with sigma
 P7  A growing sigma(t) (an oscillator building up from rest) drives its envelope a(t) up:
     given a = u, a' has the mean (sigma' / sigma) u besides its stationary scatter
     s = sigma delta 2 pi nu0 (the Cramer-Leadbetter envelope). Its up-crossing rate,
-    E[a'^+ | a = u] f_a(u), is then the stationary one times
+    E[a'^+ | a = u] f_a(u), is then the stationary one times::
+
         g(eta) = sqrt(2 pi) (phi(eta) + eta Phi(eta)),  eta = (sigma' / sigma) r / (2 pi nu0 delta),
+
     phi, Phi the standard normal density and distribution (g(0) = 1). The clumps of P3
     are the envelope's crossings, so P3's argument sqrt(pi / 2) delta^1.2 r is multiplied
     by g(eta): a derived term, not a fitted one. On Kanai-Tajimi records of 10 s it lifts
@@ -84,8 +91,8 @@ def _clumps(r: np.ndarray, clumping: np.ndarray) -> np.ndarray:
 
 
 def vanmarcke_expected_peak(sigma, nu0, delta, times, *, growth=None, time_step=None, sample_correlation=None,
-                  clump_exponent=VANMARCKE_CLUMP_EXPONENT) -> np.ndarray:
-    """Expected largest |x| over ``times`` of zero-mean Gaussian processes, P3-P4 (P5 when sampled, P7 with ``growth``).
+                            clump_exponent=VANMARCKE_CLUMP_EXPONENT) -> np.ndarray:
+    """Expected largest ``|x|`` over ``times`` of zero-mean Gaussian processes, P3-P4 (P5 when sampled, P7 with ``growth``).
 
     Parameters
     ----------
@@ -108,7 +115,7 @@ def vanmarcke_expected_peak(sigma, nu0, delta, times, *, growth=None, time_step=
     Returns
     -------
     ndarray, shape (...)
-        E[max |x|], in the units of ``sigma``.
+        E[max ``|x|``], in the units of ``sigma``.
     """
     times = np.asarray(times, dtype=float)
     if times.ndim != 1 or times.size < 2 or not np.all(np.isfinite(times)) or np.any(np.diff(times) <= 0):
@@ -203,7 +210,7 @@ def rms_acceleration(excitation) -> float:
 
 
 def expected_peak_ground_acceleration(excitation, sampled: bool = True) -> float:
-    """E[PGA] of the records of ``excitation`` [m/s^2], P6: the largest |sample| (P5), or of
+    """E[PGA] of the records of ``excitation`` [m/s^2], P6: the largest ``|sample|`` (P5), or of
     the continuous process when ``sampled`` is False (P4)."""
     moments = record_spectral_moments(excitation)
     if excitation.envelope is None:

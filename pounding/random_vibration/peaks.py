@@ -1,6 +1,6 @@
 """Expected extremes of Gaussian responses: Davenport's peak factor (Eq. 23-24,
 30, 35) and the equivalent stationary process of Michaelov et al. (2001) for
-non-stationary excitation (Eq. 26-29); and the expected largest |Y| of a
+non-stationary excitation (Eq. 26-29); and the expected largest ``|Y|`` of a
 response from its time-varying sigmas with Vanmarcke's clumps (the
 separation rules', docs/theory.md, G23-G24).
 
@@ -43,7 +43,7 @@ def davenport_peak_factor(rate, duration):
     is this factor times its standard deviation. Davenport's ``rate`` is the
     mean rate of the crossings that count: the zero-upcrossing rate
     sigma_Ydot / (2 pi sigma_Y) for the largest maximum of Y, twice that for
-    the largest |Y|. (Eq. 24 uses sigma_V / (pi sigma_X), the zero-crossing
+    the largest ``|Y|``. (Eq. 24 uses sigma_V / (pi sigma_X), the zero-crossing
     rate of the relative *displacement*, for the peak of the relative
     *velocity*; see :class:`~pounding.closed_form.response.ContactResponse`.)
 
@@ -93,7 +93,7 @@ too: chosen over the one-sided sqrt(2 pi) by looking at Monte Carlo results
 
 
 def expected_absolute_peak(sigma, sigma_derivative, weights, bandwidth: float, points: int = 91) -> float:
-    """Expected largest |Y| of a zero-mean Gaussian response over its record,
+    """Expected largest ``|Y|`` of a zero-mean Gaussian response over its record,
     from sigma_Y(t) and sigma_Y'(t) on a time grid with quadrature ``weights``.
 
     Vanmarcke's (1975) clumps of crossings of the double barrier +-u, counted
@@ -102,7 +102,7 @@ def expected_absolute_peak(sigma, sigma_derivative, weights, bandwidth: float, p
 
         N(u) = sum_t w_t 2 nu_t exp(-r_t^2 / 2) min(1, (1 - exp(-sqrt(pi / 2) q^1.2 r_t)) / (1 - exp(-r_t^2 / 2))),
 
-    P(max |Y| > u) = 1 - exp(-N(u)), and E[max |Y|] = int_0^inf P du. Unlike
+    P(max ``|Y|`` > u) = 1 - exp(-N(u)), and E[max ``|Y|``] = int_0^inf P du. Unlike
     Davenport's factor (Eq. 23) it follows a response building up from rest
     or under an envelope, and it takes a narrow-band response's crossings in
     runs, where Davenport's factor counts each (it puts a lightly damped
@@ -129,7 +129,7 @@ def expected_absolute_peak(sigma, sigma_derivative, weights, bandwidth: float, p
     Returns
     -------
     float
-        E[max |Y|], in the units of ``sigma``.
+        E[max ``|Y|``], in the units of ``sigma``.
     """
     sigma, rate_sigma, weights = (np.asarray(a, dtype=float).ravel() for a in (sigma, sigma_derivative, weights))
     if not sigma.size == rate_sigma.size == weights.size:

@@ -24,15 +24,15 @@ class SimulationResult:
     Attributes
     ----------
     force_max : ndarray
-        Extreme pounding force max_t |F(t)| [N], Eq. 11 (0 without pounding).
+        Extreme pounding force max_t ``|F(t)|`` [N], Eq. 11 (0 without pounding).
     impacts : ndarray
         Number of impacts.
     penetration_max : ndarray
         Peak penetration [m].
     impact_velocity_max : ndarray
         Largest approach velocity at the onset of an impact [m/s].
-    displacement_max : ndarray, shape (records, 2)
-        Peak |displacement| of the contact floor of building 1 and 2 [m].
+    displacement_max : ndarray, shape (n_records, 2)
+        Peak ``|displacement|`` of the contact floor of building 1 and 2 [m].
     relative_displacement_max : ndarray
         Peak of X = x1 - x2 at the contact floors over the accepted steps [m].
     steps : ndarray

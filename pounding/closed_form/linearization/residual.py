@@ -136,7 +136,7 @@ def residual_chaos(law, c_e: float, k_e: float, covariance: np.ndarray, nodes: i
     (its terms are homogeneous of degree 1 and n + 1), and He_a(xi_1) He_b(xi_2)
     a polynomial in R: the radial integrals are Gamma functions, and the
     angular ones are smooth between the angles where u' = 0 or z = 0 (the kinks
-    of |u'| and |z|^n), so Gauss-Legendre on each of the four sectors is
+    of ``|u'|`` and ``|z|^n``), so Gauss-Legendre on each of the four sectors is
     accurate to 1e-9 with 8 nodes.
 
     Parameters

@@ -54,10 +54,10 @@ def wen_expectations(sigma_velocity, sigma_z, rho, n):
     For a zero-mean Gaussian pair (udot, z) with standard deviations
     ``sigma_velocity``, ``sigma_z`` and correlation ``rho``:
 
-    - F1 = E[sgn(udot) |z|^(n-1) z]
-    - F2 = E[|z|^n]
-    - F3 = n E[|udot| |z|^(n-1)]
-    - F4 = n E[udot |z|^(n-1) sgn(z)]
+    - F1 = E[sgn(udot) ``|z|^(n-1)`` z]
+    - F2 = E[``|z|^n``]
+    - F3 = n E[``|udot|`` ``|z|^(n-1)``]
+    - F4 = n E[udot ``|z|^(n-1)`` sgn(z)]
 
     so that E[d zdot/d udot] = A - beta F1 - gamma F2 and
     E[d zdot/d z] = -beta F3 - gamma F4 (Eq. 20). With polar coordinates of
