@@ -74,7 +74,7 @@ def summary_rows(snapshot: Snapshot, units: str = "SI") -> list[tuple[str, str, 
     ]
     study = matching_study(snapshot)
     if study is None:
-        rows.append(("Monte Carlo check", "not run", "pounding report --records N runs it"))
+        rows.append(("Monte Carlo check", "not run", "no records were simulated for this report"))
     else:
         check = monte_carlo_check(e.force_expected, study)
         rows += [
