@@ -214,7 +214,7 @@ _RENAMED = {"path": "output", "directory": "output", "output_dir": "output", "ta
 
 
 def _options(command: str) -> dict[str, str]:
-    """Each ``dest`` of ``pounding command`` (its subcommands' included) and its option as argparse names it."""
+    """Each ``dest`` of ``pounding command`` (its subcommands' included) and its long option (``--output``, not ``-o``)."""
     commands = next(action for action in parser()._actions if isinstance(action, argparse._SubParsersAction))
     found: dict[str, str] = {}
     pending = [commands.choices[command]] if command in commands.choices else []
@@ -223,13 +223,13 @@ def _options(command: str) -> dict[str, str]:
             if isinstance(action, argparse._SubParsersAction):
                 pending += action.choices.values()
             elif action.option_strings and action.dest != "help":
-                found.setdefault(action.dest, "/".join(action.option_strings))
+                found.setdefault(action.dest, max(action.option_strings, key=len))
     return found
 
 
 def option_for(command: str, field: str) -> str:
     """The option of ``pounding command`` that gives the library's argument ``field``
-    (``records`` -> ``--records``, ``path`` -> ``-o/--output``); ``field`` as it is when
+    (``records`` -> ``--records``, ``path`` -> ``--output``); ``field`` as it is when
     no option gives it (the positional ``case``, a flag already)."""
     return _options(command).get(_RENAMED.get(field, field), field)
 

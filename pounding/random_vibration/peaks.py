@@ -134,7 +134,7 @@ def expected_absolute_peak(sigma, sigma_derivative, weights, bandwidth: float, p
     sigma, rate_sigma, weights = (np.asarray(a, dtype=float).ravel() for a in (sigma, sigma_derivative, weights))
     if not sigma.size == rate_sigma.size == weights.size:
         raise ArgumentError("weights", f"sigma, sigma_derivative and weights must have one value per instant, got sizes "
-                        f"{sigma.size}, {rate_sigma.size}, {weights.size}")
+                            f"{sigma.size}, {rate_sigma.size}, {weights.size}")
     for name, values in (("sigma", sigma), ("sigma_derivative", rate_sigma), ("weights", weights)):
         if not (values.size and np.isfinite(values).all() and values.min() >= 0.0):
             raise ArgumentError(name, "must be finite numbers >= 0, one per instant")
