@@ -239,7 +239,7 @@ def monte_carlo_forces(case, adjustments: Sequence[Mapping], plan: MonteCarloPla
     adjustment that makes the case invalid names its key.
     """
     if plan.records is None:
-        raise CaseError("records", "must be given for a study of many points")
+        raise ArgumentError("records", "must be given for a study of many points")
     _check_budget(max_chunks)
     records, seed, chunk_records, tolerance = plan.records, plan.seed, plan.chunk_records, plan.settings.tolerance
     data, name = case_data(case)
