@@ -3,7 +3,7 @@ file's key beside it (never a command-line option: the page has no command line)
 
 from __future__ import annotations
 
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError, CaseError
 
 __all__ = ["message"]
 
@@ -17,7 +17,10 @@ _LABELS = {
 
 
 def message(error: Exception) -> str:
-    """One line naming the input: the case file's field, then the widget's name."""
+    """One line naming the input: the case file's field, then the widget's name; a library call's
+    argument by its name in words (``target_probability``: "target probability"), never a flag."""
+    if isinstance(error, ArgumentError):
+        return f"Invalid input: {error.field.replace('_', ' ')}: {error.message}"
     if isinstance(error, CaseError):
         field = error.field
         parts = field.split(".")

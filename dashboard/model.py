@@ -29,7 +29,7 @@ from pounding.case.case import case_from_dict, load_case
 from pounding.closed_form.estimator import estimate
 from pounding.closed_form.pair import LinearizedPair
 from pounding.display_units import display
-from pounding.errors import CaseError, ConvergenceError, SimulationError
+from pounding.errors import CaseError, ConvergenceError, InputError, SimulationError
 from pounding.presets import preset_names, preset_text
 from pounding.report import compute_snapshot
 from pounding.units import UNIT_SYSTEMS
@@ -43,7 +43,7 @@ from dashboard.visibility import applies
 
 __all__ = ["PoundingModel"]
 
-_FAILURES = (CaseError, ConvergenceError, SimulationError, OverflowError, ValueError)
+_FAILURES = (InputError, ConvergenceError, SimulationError, OverflowError, ValueError)
 """What an input can make the library raise: shown as a message naming the input, never a traceback."""
 
 _NOT_OF_THE_CASE = ("preset", "units", "advanced", "records", "seed")

@@ -10,7 +10,7 @@ import numpy as np
 import panel as pn
 
 from pounding.display_units import display
-from pounding.errors import CaseError, ConvergenceError, SimulationError
+from pounding.errors import ConvergenceError, InputError, SimulationError
 from pounding.units import STANDARD_GRAVITY
 
 from dashboard.messages import message
@@ -104,7 +104,7 @@ class LazyTabs:
         def work(current, deliver):
             try:
                 content = build(self.dashboard, snapshot, units, capacity)
-            except (CaseError, ConvergenceError, SimulationError, ValueError, ArithmeticError) as error:
+            except (InputError, ConvergenceError, SimulationError, ValueError, ArithmeticError) as error:
                 content = pn.pane.Alert(message(error), alert_type="warning")
             deliver(lambda: holder.__setitem__(slice(None), [content]))
 

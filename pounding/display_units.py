@@ -112,7 +112,7 @@ DISPLAY_UNITS = {
 def display(units: str) -> Display:
     """The :class:`Display` of a unit system's name ("SI" or "kgf-cm-s")."""
     if units not in UNIT_SYSTEMS:
-        from pounding.errors import CaseError
+        from pounding.errors import ArgumentError
 
-        raise CaseError("units", f"unknown unit system {units!r}; allowed: {', '.join(UNIT_SYSTEMS)}")
+        raise ArgumentError("units", f"unknown unit system {units!r}; allowed: {', '.join(UNIT_SYSTEMS)}")
     return DISPLAY_UNITS[units]

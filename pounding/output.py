@@ -7,8 +7,8 @@ renames it over the target, so a reader sees the whole file or none. Before
 writing it checks the target: an existing target that is not a regular file
 (a device such as ``/dev/null``, a directory, a symlink to one), an empty
 name, a folder that is missing or is a file are refused with a
-:class:`~pounding.errors.CaseError` naming the field (``--output`` on the
-command line). An error of the system (a read-only folder, a full disk) is an
+:class:`~pounding.errors.ArgumentError` naming the argument (``path``; the
+command line shows the option typed). An error of the system (a read-only folder, a full disk) is an
 :class:`OSError` naming the target, never the temporary file; the temporary
 file is removed on any error, KeyboardInterrupt included.
 
@@ -27,7 +27,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError
 
 __all__ = ["check_folder", "check_target", "describe_os_error", "release_stdout", "remove_stale", "write_atomic"]
 
@@ -108,7 +108,7 @@ def _stat(path: Path, field: str, shown: str):
     except FileNotFoundError:
         return None
     except NotADirectoryError:
-        raise CaseError(field, f"{shown!r}: a part of its folder is a file, not a folder") from None
+        raise ArgumentError(field, f"{shown!r}: a part of its folder is a file, not a folder") from None
     except OSError as error:
         raise _named(error, shown, "cannot look at it") from None
 
@@ -119,7 +119,7 @@ def _real(path, field: str, wanted: str = "a file name") -> tuple[Path, str]:
     if isinstance(shown, bytes):
         shown = os.fsdecode(shown)
     if not shown or not shown.strip():
-        raise CaseError(field, f"is empty; give {wanted}")
+        raise ArgumentError(field, f"is empty; give {wanted}")
     given = Path(shown)
     real = Path(os.path.realpath(given)) if given.is_symlink() else given
     return real, shown
@@ -129,7 +129,7 @@ def check_target(path, field: str = "path", make_parents: bool = False, probe: b
     """Check that ``path`` can be written as a file; return the path to write.
 
     A symlink is followed (its target is written, the link kept). Refused
-    with :class:`CaseError` naming ``field``: an empty name; an existing
+    with :class:`ArgumentError` naming ``field``: an empty name; an existing
     target that is not a regular file (a device, a folder, a pipe); a
     folder that does not exist (unless ``make_parents``) or is a file.
     With ``probe``, a temporary file is also made (and removed) in the
@@ -139,13 +139,13 @@ def check_target(path, field: str = "path", make_parents: bool = False, probe: b
     real, shown = _real(path, field)
     status = _stat(real, field, shown)
     if status is not None and not stat.S_ISREG(status.st_mode):
-        raise CaseError(field, f"{shown!r} is {_kind(status.st_mode)}, not a regular file; give a file name")
+        raise ArgumentError(field, f"{shown!r} is {_kind(status.st_mode)}, not a regular file; give a file name")
     folder = real.parent
     status = _stat(folder, field, shown)
     if status is None and not make_parents:
-        raise CaseError(field, f"the folder {str(folder)!r} does not exist; create it first")
+        raise ArgumentError(field, f"the folder {str(folder)!r} does not exist; create it first")
     if status is not None and not stat.S_ISDIR(status.st_mode):
-        raise CaseError(field, f"{str(folder)!r} is {_kind(status.st_mode)}, not a folder")
+        raise ArgumentError(field, f"{str(folder)!r} is {_kind(status.st_mode)}, not a folder")
     if probe and status is not None:
         descriptor, name = _temporary(real, shown)
         os.close(descriptor)
@@ -165,7 +165,7 @@ def _temporary(real: Path, shown: str) -> tuple[int, str]:
 def check_folder(path, field: str = "output_dir", create: bool = False) -> Path:
     """Check that ``path`` is a folder, or can be made one (made when ``create``); return it.
 
-    Refused with :class:`CaseError` naming ``field``: an empty name, an
+    Refused with :class:`ArgumentError` naming ``field``: an empty name, an
     existing path that is not a folder (a file, a device), a part of the path
     that is a file. Errors of the system (permissions, a read-only file
     system) are :class:`OSError` naming ``path``.
@@ -173,12 +173,12 @@ def check_folder(path, field: str = "output_dir", create: bool = False) -> Path:
     real, shown = _real(path, field, "a folder")
     status = _stat(real, field, shown)
     if status is not None and not stat.S_ISDIR(status.st_mode):
-        raise CaseError(field, f"{shown!r} is {_kind(status.st_mode)}, not a folder; give a folder")
+        raise ArgumentError(field, f"{shown!r} is {_kind(status.st_mode)}, not a folder; give a folder")
     if status is None and create:
         try:
             real.mkdir(parents=True, exist_ok=True)
         except (NotADirectoryError, FileExistsError):
-            raise CaseError(field, f"{shown!r}: a part of it is a file, not a folder") from None
+            raise ArgumentError(field, f"{shown!r}: a part of it is a file, not a folder") from None
         except OSError as error:
             raise _named(error, shown, "cannot make the folder") from None
     return real
@@ -280,7 +280,7 @@ def write_atomic(path, data: str | bytes, field: str = "path", *, encoding: str 
 
     Raises
     ------
-    CaseError
+    ArgumentError
         The target cannot be a file (see :func:`check_target`), naming ``field``.
     OSError
         The system refused (read-only folder, full disk, ...), naming ``path``.

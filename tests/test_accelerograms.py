@@ -15,7 +15,7 @@ from pounding.hazard.accelerograms import (
     write_at2,
     write_csv,
 )
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError, CaseError
 
 HEADER = "PEER NGA STRONG MOTION DATABASE RECORD\nIMPERIAL VALLEY 10/15/79, EL CENTRO ARRAY #9, 180\n" \
          "ACCELERATION TIME SERIES IN UNITS OF G\n"
@@ -223,5 +223,5 @@ def test_accelerogram_checks_its_data():
     for step, values in ((0.0, [1, 2]), (0.01, [1.0]), (0.01, [[1, 2], [3, 4]]), (0.01, [1, np.nan]), (float("inf"), [1, 2])):
         with pytest.raises(CaseError):
             Accelerogram("r", step, values)
-    with pytest.raises(CaseError):
+    with pytest.raises(ArgumentError, match="factor"):
         record.scaled(0)

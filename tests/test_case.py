@@ -6,7 +6,7 @@ import textwrap
 import numpy as np
 import pytest
 
-from pounding import CaseError, load_case, preset_names, simulate
+from pounding import ArgumentError, CaseError, load_case, preset_names, simulate
 from pounding.case.case import case_from_dict
 from pounding.units import KGF_CM_S, STANDARD_GRAVITY
 
@@ -176,7 +176,7 @@ def test_multi_storey_building_takes_no_period():
 
 
 def test_unknown_file_or_preset():
-    with pytest.raises(CaseError, match="neither a TOML file nor a preset"):
+    with pytest.raises(ArgumentError, match="neither a TOML file nor a preset"):
         load_case("no-such-case")
 
 

@@ -9,7 +9,7 @@ import pytest
 
 from pounding.hazard.compatible_psd import compatible_spectrum, initial_psd, random_vibration_spectrum
 from pounding.hazard.design_spectra import ASCE7Spectrum, Eurocode8Spectrum, TabulatedSpectrum
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError
 from pounding.hazard.excitation import Excitation, ShinozukaSato, ground_accelerations
 
 G = 9.80665
@@ -102,6 +102,6 @@ def test_a_stronger_spectrum_scales_g0_alone():
 def test_bad_input_names_its_field(kwargs, field):
     arguments = dict(target=ASCE7Spectrum(1.0, 0.6), duration=20.0)
     arguments.update(kwargs)
-    with pytest.raises(CaseError) as error:
+    with pytest.raises(ArgumentError) as error:
         compatible_spectrum(**arguments)
     assert error.value.field == field and len(str(error.value)) < 200

@@ -10,7 +10,7 @@ import pytest
 from scipy.stats import binom
 
 from pounding import load_case, simulate
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError
 from pounding.hazard.excitation import ground_accelerations
 from pounding.simulation.monte_carlo import design_gap, integrate, records_for_bound
 
@@ -62,7 +62,7 @@ def test_design_gap_is_reproducible_and_ignores_the_case_gap():
 
 
 def test_bad_target_probability_names_the_field():
-    with pytest.raises(CaseError, match="target_probability"):
+    with pytest.raises(ArgumentError, match="target_probability"):
         design_gap(CASE, target_probability=1.0, records=5)
     out = run("simulate", "section5-T2-0.4", "--design-gap", "0", "--records", "5")
     assert out.returncode == 2 and "--design-gap" in out.stderr and "Traceback" not in out.stderr

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from pounding.hazard.design_spectra import ASCE7Spectrum, Eurocode8Spectrum, TabulatedSpectrum
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError, CaseError
 
 G = 9.80665
 
@@ -74,5 +74,5 @@ def test_bad_input_names_its_field(make, field):
 
 
 def test_negative_period_is_refused():
-    with pytest.raises(CaseError, match="periods"):
+    with pytest.raises(ArgumentError, match="periods"):
         ASCE7Spectrum(1.0, 0.5).pseudo_acceleration([-1.0])

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from pounding import CaseError, load_case, simulate_record
+from pounding import ArgumentError, CaseError, load_case, simulate_record
 from pounding.random_vibration.crossing_kernels import approach_intensity
 from pounding.closed_form.estimator import estimate, force_versus_gap
 from pounding.closed_form.linearization import linearize_pair
@@ -99,7 +99,7 @@ def test_michaelov_order_weighs_the_strong_motion_more_as_it_grows():
     default = estimate(pair).paper
     assert default.michaelov_n1 == 3 and default.force_expected == equivalent[3].force_expected
     for bad in (0.0, 25, float("nan"), "3"):
-        with pytest.raises(CaseError, match="michaelov_n1"):
+        with pytest.raises(ArgumentError, match="michaelov_n1"):
             estimate(pair, michaelov_n1=bad)
 
 
@@ -175,12 +175,12 @@ def test_force_and_probability_fall_with_the_gap():
 
 @pytest.mark.parametrize("value", [0.0, 1.0, -0.2, 1.5])
 def test_bad_target_probability_is_named(value):
-    with pytest.raises(CaseError, match="target_probability"):
+    with pytest.raises(ArgumentError, match="target_probability"):
         estimate(load_case("section5-T2-0.4"), target_probability=value)
 
 
 def test_bad_gaps_are_named():
-    with pytest.raises(CaseError, match="gaps"):
+    with pytest.raises(ArgumentError, match="gaps"):
         force_versus_gap(load_case("section5-T2-0.4"), [0.01, -0.01])
 
 

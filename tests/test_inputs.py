@@ -1,6 +1,7 @@
 """Hostile and careless input (issue 21): every invalid input, in a case file, on the command line or
-through the library, is a CaseError naming the key as written and quoting the value in the user's own
-units; numpy scalars pass where Python numbers do; the resource limits refuse at once, naming the limit;
+through the library, is an InputError quoting the value in the user's own units: a CaseError naming the
+case file's key as written, an ArgumentError naming the library call's argument (the command line names
+the option typed); numpy scalars pass where Python numbers do; the resource limits refuse at once, naming the limit;
 ``POUNDING_LIMITS=off`` lifts them."""
 
 from __future__ import annotations
@@ -15,12 +16,14 @@ import numpy as np
 import pytest
 
 from pounding import (
+    ArgumentError,
     BoucWen,
     Building,
     CaseError,
     CloughPenzien,
     Contact,
     Excitation,
+    InputError,
     Settings,
     ShinozukaSato,
     Storey,
@@ -42,10 +45,11 @@ BASE = tomllib.loads(preset_text(PRESET))
 CASE = load_case(PRESET)
 
 
-def _refused(call, field: str, *quoted: str, seconds: float = 1.0) -> CaseError:
-    """``call()`` raises a CaseError naming ``field``, quoting each of ``quoted``, in one short line, at once."""
+def _refused(call, field: str, *quoted: str, seconds: float = 1.0, error: type = CaseError) -> InputError:
+    """``call()`` raises ``error`` (a CaseError: a key of the case file; an ArgumentError: an argument of the call)
+    naming ``field``, quoting each of ``quoted``, in one short line, at once."""
     start = time.perf_counter()
-    with pytest.raises(CaseError) as raised:
+    with pytest.raises(error) as raised:
         call()
     elapsed = time.perf_counter() - start
     error = raised.value
@@ -101,7 +105,7 @@ def test_an_empty_table_is_a_case_error():
 
 @pytest.mark.parametrize("value", [5, None, 2.5, [PRESET]])
 def test_load_case_refuses_what_is_neither_a_name_a_path_nor_a_table(value):
-    _refused(lambda: load_case(value), "case", type(value).__name__)
+    _refused(lambda: load_case(value), "case", type(value).__name__, error=ArgumentError)
 
 
 def test_load_case_takes_the_parsed_file():
@@ -181,12 +185,15 @@ def test_si_files_quote_si_units():
         (lambda: dataclasses.replace(CASE.excitation, duration=True), "duration", "True"),
         (lambda: dataclasses.replace(CASE.contact, levels=5), "levels", "5"),
         (lambda: ShinozukaSato(B1=10**400), "B1", "huge"),
-        (lambda: Settings(displacement_limit=math.inf), "displacement_limit", "inf"),
-        (lambda: Settings(workers=10**6), "workers", "1000000"),
     ],
 )
 def test_a_dataclass_given_the_wrong_type_says_so_where_it_is_built(build, field, quoted):
     _refused(build, field, quoted)
+
+
+def test_settings_are_arguments_of_a_study_not_keys_of_the_case():
+    _refused(lambda: Settings(displacement_limit=math.inf), "displacement_limit", "inf", error=ArgumentError)
+    _refused(lambda: Settings(workers=10**6), "workers", "1000000", error=ArgumentError)
 
 
 # --- numpy scalars pass where Python numbers do, as Python numbers ---------------
@@ -230,8 +237,8 @@ def test_as_case(tmp_path):
     path = tmp_path / "mine.toml"
     path.write_text(preset_text(PRESET))
     assert as_case(path).contact == CASE.contact
-    _refused(lambda: as_case(5), "case", "int 5")
-    _refused(lambda: as_case(BASE), "case", "dict")
+    _refused(lambda: as_case(5), "case", "int 5", error=ArgumentError)
+    _refused(lambda: as_case(BASE), "case", "dict", error=ArgumentError)
 
 
 def test_the_studies_take_a_preset_name():
@@ -239,7 +246,7 @@ def test_the_studies_take_a_preset_name():
     assert design_gap(PRESET, records=2).n_records == 2
     assert simulate_record(PRESET).time.size > 0
     for study in (simulate, design_gap, simulate_record):
-        _refused(lambda: study(42), "case", "int 42")
+        _refused(lambda: study(42), "case", "int 42", error=ArgumentError)
 
 
 @pytest.mark.parametrize(
@@ -255,7 +262,7 @@ def test_the_studies_take_a_preset_name():
     ],
 )
 def test_a_bad_argument_of_a_study_is_named(call, field, quoted):
-    _refused(call, field, quoted)
+    _refused(call, field, quoted, error=ArgumentError)
 
 
 # --- case files: any encoding, binary, oversized, malformed ----------------------
@@ -281,7 +288,7 @@ def test_a_file_with_a_byte_order_mark_loads(tmp_path, encoding):
 
 
 def test_a_path_too_long_is_neither_a_file_nor_a_preset():
-    _refused(lambda: load_case("x" * 5000), "case", "neither a TOML file nor a preset")
+    _refused(lambda: load_case("x" * 5000), "case", "neither a TOML file nor a preset", error=ArgumentError)
 
 
 def test_a_deeply_nested_file_is_a_case_error(tmp_path):
@@ -327,23 +334,25 @@ def test_storeys_per_building_are_limited():
 
 
 def test_records_are_limited():
-    _refused(lambda: simulate(CASE, records=100_000_000_000), "records", "1,000,000", defaults.LIMITS_VARIABLE)
-    _refused(lambda: design_gap(CASE, records=10**7), "records", "1,000,000")
+    _refused(lambda: simulate(CASE, records=100_000_000_000), "records", "1,000,000", defaults.LIMITS_VARIABLE, error=ArgumentError)
+    _refused(lambda: design_gap(CASE, records=10**7), "records", "1,000,000", error=ArgumentError)
 
 
 def test_what_a_thread_holds_is_limited():
     long = case_from_dict(_case({"excitation.duration": 10_000.0}))
-    _refused(lambda: simulate(long, records=100, settings=Settings(chunk_size=100)), "chunk_size", "16,777,216")
+    _refused(lambda: simulate(long, records=100, settings=Settings(chunk_size=100)), "chunk_size", "16,777,216", error=ArgumentError)
     storeys = [{"mass": 40.0, "stiffness": 1097.0}] * 20
     tall = case_from_dict(_case({"buildings.1.storeys": storeys, "buildings.2.storeys": storeys, "excitation.duration": 10_000.0}))
     _refused(lambda: simulate_record(tall), "excitation.duration", "history values", "134,217,728")
-    _refused(lambda: integrate(CASE, np.zeros(defaults.MAX_SAMPLES_PER_RECORD + 1), 0.005), "ground_acceleration", "2,097,152")
+    _refused(lambda: integrate(CASE, np.zeros(defaults.MAX_SAMPLES_PER_RECORD + 1), 0.005), "ground_acceleration", "2,097,152",
+             error=ArgumentError)
 
 
 def test_sweep_points_are_limited():
-    _refused(lambda: normalized_vary(["contact.gap=0:5:100000000"]), "--vary", "100,000,000", "10,000")
-    _refused(lambda: normalized_vary(["contact.gap=0:5:200", "contact.restitution=0.1:0.9:200"]), "--vary", "40,000 sweep points")
-    _refused(lambda: normalized_vary({"contact.gap": range(20_000)}), "--vary", "10,000")
+    _refused(lambda: normalized_vary(["contact.gap=0:5:100000000"]), "vary", "100,000,000", "10,000", error=ArgumentError)
+    _refused(lambda: normalized_vary(["contact.gap=0:5:200", "contact.restitution=0.1:0.9:200"]), "vary", "40,000 sweep points",
+             error=ArgumentError)
+    _refused(lambda: normalized_vary({"contact.gap": range(20_000)}), "vary", "10,000", error=ArgumentError)
     assert len(normalized_vary({"contact.gap": [np.float32(0.5), np.int64(1)]})[0][1]) == 2
 
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from pounding.hazard.accelerograms import G, Accelerogram
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError, CaseError
 from pounding.hazard.excitation import CloughPenzien, Excitation, KanaiTajimi, ShinozukaSato, ground_accelerations
 from pounding.hazard.motion_fit import TAPER, arias_intensity, fit_excitation, significant_duration
 
@@ -51,7 +51,7 @@ def test_significant_duration_of_a_record_silent_but_for_a_burst():
 def test_significant_duration_errors():
     with pytest.raises(CaseError, match="zero throughout"):
         significant_duration(Accelerogram("quiet.AT2", 0.01, np.zeros(10)))
-    with pytest.raises(CaseError):
+    with pytest.raises(ArgumentError, match="high"):
         significant_duration(Accelerogram("r", 0.01, np.ones(10)), 0.9, 0.1)
 
 
@@ -143,15 +143,15 @@ def test_to_dict_is_json_and_si():
 def test_fit_errors():
     excitation, records = _suite(KanaiTajimi(0.05, 15.6, 0.6), records=2)
     for bad in ([], (), None, records[0], [records[0], "x"]):
-        with pytest.raises(CaseError) as caught:
+        with pytest.raises(ArgumentError) as caught:
             fit_excitation(bad, 100.0)
         assert caught.value.field == "records"
     coarse = Accelerogram("motions/coarse.AT2", 0.02, records[0].acceleration[::4])  # Nyquist pi / 0.02 = 157 rad/s
-    with pytest.raises(CaseError) as caught:
+    with pytest.raises(ArgumentError) as caught:
         fit_excitation([records[1], coarse], 160.0)
     assert caught.value.field == "cutoff_frequency" and "motions/coarse.AT2" in caught.value.message
     for cutoff in (0.0, -1.0, float("nan"), 1.0):
-        with pytest.raises(CaseError):
+        with pytest.raises(ArgumentError, match="cutoff_frequency"):
             fit_excitation(records, cutoff)
     with pytest.raises(CaseError, match="zero throughout"):
         fit_excitation([Accelerogram("quiet", 0.01, np.zeros(100))], 100.0)
@@ -159,6 +159,6 @@ def test_fit_errors():
 
 def test_a_cutoff_too_low_for_the_shortest_strong_motion_names_it():
     burst = Accelerogram("m/short.AT2", 0.01, np.r_[np.zeros(50), 1.0, -1.0, np.zeros(50)])  # strong motion of 0.02 s
-    with pytest.raises(CaseError) as caught:
+    with pytest.raises(ArgumentError) as caught:
         fit_excitation([burst], 100.0)
     assert caught.value.field == "cutoff_frequency" and "m/short.AT2" in caught.value.message

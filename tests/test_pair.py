@@ -45,9 +45,9 @@ def test_a_pair_reused_gives_the_estimate_of_its_case():
 
 
 def test_estimate_takes_a_preset_name_and_names_a_wrong_argument():
-    from pounding.errors import CaseError
+    from pounding.errors import ArgumentError
 
     assert estimate("section5-T2-0.4").force_expected == estimate(load_case("section5-T2-0.4")).force_expected
     for wrong in (5, None, {"contact": {}}):
-        with pytest.raises(CaseError, match="case: must be a Case"):
+        with pytest.raises(ArgumentError, match="case: must be a Case"):
             estimate(wrong)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from pounding import load_case
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError
 from pounding.hazard.excitation import CloughPenzien, Excitation, ShinozukaSato, ground_accelerations
 from pounding.random_vibration.peak_factors import (
     vanmarcke_expected_peak,
@@ -92,11 +92,11 @@ def test_bad_input_names_its_field(kwargs, field):
     arguments = dict(sigma=np.ones(2), nu0=1.0, delta=0.5, times=[0.0, 10.0])
     arguments.update(kwargs)
     sigma, nu0, delta, times = (arguments.pop(k) for k in ("sigma", "nu0", "delta", "times"))
-    with pytest.raises(CaseError) as error:
+    with pytest.raises(ArgumentError) as error:
         vanmarcke_expected_peak(sigma, nu0, delta, times, **arguments)
     assert error.value.field == field and len(str(error.value)) < 200
 
 
 def test_pga_target_must_be_positive():
-    with pytest.raises(CaseError, match="pga"):
+    with pytest.raises(ArgumentError, match="pga"):
         intensity_for_peak_ground_acceleration(load_case("section5-T2-0.4").excitation, -1.0)

@@ -7,7 +7,7 @@ import pytest
 from scipy.integrate import quad, solve_ivp
 
 import pounding
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError, CaseError
 from pounding.hazard.excitation import ShinozukaSato
 from pounding.closed_form.covariance_history import time_varying_covariance
 from pounding.closed_form.pair import LinearizedPair
@@ -78,9 +78,9 @@ def test_equivalent_stationary_properties():
     # A variance on for half the record: the equivalent lasts that half.
     step = np.where(times <= 20.0, 1.0, 0.0)
     assert equivalent_stationary(step, times)[1] == pytest.approx(20.0, rel=1e-3)
-    with pytest.raises(CaseError):
+    with pytest.raises(ArgumentError, match="variance_of_t"):
         equivalent_stationary(np.zeros(times.size), times)
-    with pytest.raises(CaseError):
+    with pytest.raises(ArgumentError, match="times"):
         equivalent_stationary(shape, times[::-1])
 
 
@@ -118,7 +118,7 @@ def test_expected_absolute_peak_follows_a_build_up_and_rejects_bad_input():
     for kwargs, field in [({"bandwidth": 0.0}, "bandwidth"), ({"bandwidth": 1.5}, "bandwidth"),
                           ({"weights": weights[:-1]}, "weights"), ({"sigma": np.zeros(81)}, "sigma")]:
         arguments = {"sigma": sigma, "sigma_derivative": 5 * sigma, "weights": weights, "bandwidth": 0.5, **kwargs}
-        with pytest.raises(CaseError, match=field):
+        with pytest.raises(ArgumentError, match=field):
             expected_absolute_peak(**arguments)
 
 

@@ -9,7 +9,7 @@ import threading
 import numpy as np
 import pytest
 
-from pounding import CaseError, MonteCarloPlan, Settings, design_gap, load_case, simulate, sweep
+from pounding import ArgumentError, MonteCarloPlan, Settings, design_gap, load_case, simulate, sweep
 from pounding.simulation.monte_carlo import Cancelled
 
 CASE = "section5-T2-0.4"
@@ -70,15 +70,15 @@ def test_a_sweep_on_the_plan_gives_simulates_numbers(tmp_path):
     ({"settings": {"tolerance": 1e-6}}, "settings"),
 ])
 def test_a_bad_plan_is_refused_naming_its_field(options, field):
-    with pytest.raises(CaseError) as error:
+    with pytest.raises(ArgumentError) as error:
         MonteCarloPlan(**options)
     assert error.value.field == field
 
 
 def test_an_unknown_option_is_refused_naming_it_and_the_options():
-    with pytest.raises(CaseError) as error:
+    with pytest.raises(ArgumentError) as error:
         simulate(CASE, recrods=5)
     assert error.value.field == "recrods" and "records" in error.value.message and "seed" in error.value.message
-    with pytest.raises(CaseError) as error:
+    with pytest.raises(ArgumentError) as error:
         simulate(CASE, plan={"records": 5})
     assert error.value.field == "plan"

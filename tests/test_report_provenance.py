@@ -10,7 +10,7 @@ import tomllib
 
 import pytest
 
-from pounding import CaseError, load_case
+from pounding import ArgumentError, load_case
 from pounding.case.case import case_from_dict
 from pounding.cli.commands import main
 from pounding.case.engineering import ground_motion_terms
@@ -158,7 +158,7 @@ def _numbers(case) -> str:
 
 
 def test_an_unknown_preset_is_named():
-    with pytest.raises(CaseError, match="preset"):
+    with pytest.raises(ArgumentError, match="preset"):
         case_provenance(preset_data(), "no-such-preset")
 
 

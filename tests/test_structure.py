@@ -224,3 +224,31 @@ def test_the_duplicate_finder_finds_a_duplicate(tmp_path):
     (tmp_path / "b.py").write_text("LIMIT = 10\nclass Other:\n    pass\ndef expected_peak():\n    pass\n")
     found = _defined_twice({"a": tmp_path / "a.py", "b": tmp_path / "b.py"})
     assert found == {"LIMIT": ["a", "b"], "expected_peak": ["a", "b"]}
+
+
+# --- the library names its own arguments; only the command line names flags (issue 30) ----------------------
+
+FLAGS_ALLOWED = ("pounding/cli/", "pounding/export/opensees_script.py")  # the command line; a script with its own argparse
+
+
+def _flags(path: Path) -> list[str]:
+    """Every string constant of ``path`` (an f-string's literal parts included) that starts with ``--`` and a
+    letter: a command-line flag, as ``raise ArgumentError("--records", ...)`` or ``f"--seed {seed}"`` would write."""
+    import re
+
+    return [f"{path.name}:{node.lineno}: {node.value!r}" for node in ast.walk(ast.parse(path.read_text()))
+            if isinstance(node, ast.Constant) and isinstance(node.value, str) and re.match(r"--[A-Za-z]", node.value)]
+
+
+def test_the_library_names_no_command_line_flag():
+    found = [flag for path in sorted((ROOT / "pounding").rglob("*.py"))
+             if not path.relative_to(ROOT).as_posix().startswith(FLAGS_ALLOWED) for flag in _flags(path)]
+    assert found == []
+
+
+def test_the_flag_scan_finds_a_flag_named_by_the_library(tmp_path):
+    planted = tmp_path / "planted.py"
+    planted.write_text('from pounding.errors import ArgumentError\n\n\ndef check(records, seed):\n'
+                       '    if records < 1:\n        raise ArgumentError("--records", "must be >= 1")\n'
+                       '    return f"--seed {seed}", "give --records at most that", "-- a dash", "---"\n')
+    assert _flags(planted) == ["planted.py:6: '--records'", "planted.py:7: '--seed '"]

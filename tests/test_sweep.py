@@ -18,11 +18,12 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from pounding import CaseError
+from pounding import ArgumentError, CaseError, InputError
 from pounding.case.case import case_from_dict
 from pounding.closed_form.estimator import estimate
 from pounding.presets import preset_text
 from pounding.simulation.monte_carlo import Settings, simulate
+from pounding.cli.parser import error_line
 from pounding.cli.sweep import add_arguments, run
 from pounding.studies.sweeps import SweepInterrupted, parse_values, parse_vary, sweep
 
@@ -80,27 +81,28 @@ def test_values_of_a_range_and_of_a_list():
     ],
 )
 def test_bad_specs_name_the_problem(spec, message):
-    with pytest.raises(CaseError, match=message) as error:
+    with pytest.raises(ArgumentError, match=message) as error:
         parse_vary(spec)
-    assert error.value.field == "--vary"
+    assert error.value.field == "vary"
 
 
 @pytest.mark.parametrize(
     "vary, field, message",
     [
-        ({"buildings.3.storeys.1.period": [0.4]}, "--vary", "buildings has 2 entries, counted from 1; got '3'"),
-        ({"buildings.0.damping_ratio": [0.05]}, "--vary", "counted from 1"),
-        ({"contact.model": [1.0]}, "--vary", "not a number"),
-        ({"contact.gap.x": [1.0]}, "--vary", "is a value, not a table"),
-        ({"exitation.G0": [1.0]}, "--vary", "has no 'exitation'"),
+        ({"buildings.3.storeys.1.period": [0.4]}, "vary", "buildings has 2 entries, counted from 1; got '3'"),
+        ({"buildings.0.damping_ratio": [0.05]}, "vary", "counted from 1"),
+        ({"contact.model": [1.0]}, "vary", "not a number"),
+        ({"contact.gap.x": [1.0]}, "vary", "is a value, not a table"),
+        ({"exitation.G0": [1.0]}, "vary", "has no 'exitation'"),
         ({"contact.gapp": [1.0]}, "contact.gapp", "unknown key"),
         ({"contact.gap": [1.0, -1.0]}, "contact.gap", r"\(at contact.gap=-1\)"),
-        ({"contact.gap": "1:2"}, "--vary", "three parts"),
-        (["contact.gap=1", "contact.gap=2"], "--vary", "varied twice"),
+        ({"contact.gap": "1:2"}, "vary", "three parts"),
+        (["contact.gap=1", "contact.gap=2"], "vary", "varied twice"),
     ],
 )
 def test_bad_paths_and_values_are_refused_before_any_work(tmp_path, vary, field, message):
-    with pytest.raises(CaseError, match=message) as error:
+    """A malformed ``vary`` is an ArgumentError naming it; a point whose case is invalid, a CaseError naming the key."""
+    with pytest.raises(ArgumentError if field == "vary" else CaseError, match=message) as error:
         sweep(short_case(), vary, records=2, output_dir=tmp_path / "out", scheduler="serial")
     assert error.value.field == field
     assert not (tmp_path / "out").exists()
@@ -110,9 +112,9 @@ def test_parquet_is_written_or_refused_in_one_line(tmp_path):
     try:
         import pyarrow  # noqa: F401
     except ImportError:
-        with pytest.raises(CaseError, match="parquet needs pyarrow") as error:
+        with pytest.raises(ArgumentError, match="parquet needs pyarrow") as error:
             run_sweep(tmp_path / "parquet", table_format="parquet")
-        assert error.value.field == "format"
+        assert error.value.field == "table_format"
     else:
         table = run_sweep(tmp_path / "parquet", records=2, table_format="parquet")
         pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "parquet" / "sweep.parquet"), table, check_like=True)
@@ -246,15 +248,15 @@ def test_a_killed_client_loses_only_its_chunks_in_flight(tmp_path, serial_table)
 
 
 def tiny_cli(argv: list[str]) -> int:
-    """What ``pounding.cli.commands.main`` does with ``run``: CaseError -> one line, exit 2."""
+    """What ``pounding.cli.commands.main`` does with ``run``: InputError -> one line naming the option typed, exit 2."""
     parser = argparse.ArgumentParser(prog="pounding")
     commands = parser.add_subparsers(dest="command", required=True)
     add_arguments(commands.add_parser("sweep"))
     args = parser.parse_args(argv)
     try:
         return run(args)
-    except CaseError as error:
-        print(f"pounding sweep: error: {error}", file=sys.stderr)
+    except InputError as error:
+        print(f"pounding sweep: error: {error_line('sweep', error)}", file=sys.stderr)
         return 2
 
 

@@ -20,7 +20,7 @@ from pounding import defaults
 from pounding.case.excitation import read_excitation
 from pounding.case.fields import build, check_keys, number, quantity, to_si
 from pounding.mechanics.contact import Contact, contact_law
-from pounding.errors import CaseError, check_limit, described, quote
+from pounding.errors import ArgumentError, CaseError, check_limit, described, quote
 from pounding.hazard.excitation import Excitation
 from pounding.hazard.sources import DesignSpectrum, RecordedMotions
 from pounding.presets import preset_description, preset_names, preset_text
@@ -240,7 +240,7 @@ def case_from_dict(data: Mapping, name: str = "case", base_directory: str | os.P
     motions' paths are relative to ``base_directory`` (the current directory
     by default; the case file's directory when loaded from a file)."""
     if not isinstance(data, Mapping):
-        raise CaseError("case", f"must be the case file's table (a dict), got {described(data)}")
+        raise ArgumentError("case", f"must be the case file's table (a dict), got {described(data)}")
     check_keys(data, _TOP_KEYS, "")
     units = unit_system(data.get("units", SI.name))
     for key in ("excitation", "buildings", "contact"):
@@ -307,20 +307,21 @@ def _read(source: str | os.PathLike) -> str:
     except (OSError, ValueError):  # a name too long, a NUL byte
         is_file = False
     if not is_file:
-        raise CaseError("case", f"{quote(str(source), 60)} is neither a TOML file nor a preset; {_presets_hint(str(source))}")
+        raise ArgumentError("case", f"{quote(str(source), 60)} is neither a TOML file nor a preset; {_presets_hint(str(source))}")
     limit = defaults.MAX_CASE_FILE_BYTES
     try:
         with path.open("rb") as file:
             data = file.read(limit + 1 if defaults.limits_enabled() else -1)
     except OSError as error:
-        raise CaseError("case", f"cannot read {quote(str(source), 80)}: {error.strerror or error}") from None
+        raise ArgumentError("case", f"cannot read {quote(str(source), 80)}: {error.strerror or error}") from None
     check_limit(str(source), len(data), limit, "bytes or more in the case file", "a case file is a few kB")
     return _decode(data, str(source))
 
 
 def read_case_file(path: str | os.PathLike) -> dict:
     """The parsed TOML of the case file at ``path`` (not yet checked as a case):
-    :class:`CaseError` for a missing, unreadable, oversized, non-UTF-8 or malformed file."""
+    :class:`ArgumentError` naming ``case`` for a missing or unreadable file, :class:`CaseError` naming
+    the file for an oversized, non-UTF-8 or malformed one."""
     return _parse(_read(path), str(Path(path)))
 
 
@@ -334,16 +335,16 @@ def load_case(source: str | os.PathLike | Mapping) -> Case:
         if text is not None:
             return case_from_dict(_parse(text, source), name=source)
     elif not isinstance(source, os.PathLike):
-        raise CaseError("case", f"give a preset name, the path of a TOML file or the case file's table, got {described(source)}")
+        raise ArgumentError("case", f"give a preset name, the path of a TOML file or the case file's table, got {described(source)}")
     return case_from_dict(read_case_file(source), name=Path(source).stem, base_directory=Path(source).parent)
 
 
 def as_case(value) -> Case:
     """``value`` as a :class:`Case`: a Case as it is, a preset name or the path
-    of a TOML file loaded by :func:`load_case`; :class:`CaseError` naming
+    of a TOML file loaded by :func:`load_case`; :class:`ArgumentError` naming
     ``case`` for anything else."""
     if isinstance(value, Case):
         return value
     if isinstance(value, (str, os.PathLike)):
         return load_case(value)
-    raise CaseError("case", f"must be a Case, a preset name or the path of a TOML file, got {described(value)}")
+    raise ArgumentError("case", f"must be a Case, a preset name or the path of a TOML file, got {described(value)}")

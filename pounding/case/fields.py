@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 
-from pounding.errors import CaseError, described, finite_number, quote
+from pounding.errors import CaseError, InputError, described, finite_number, quote
 from pounding.units import UnitSystem
 
 __all__ = ["build", "check_keys", "choice", "number", "quantity", "text_list", "to_si"]
@@ -55,11 +55,12 @@ def quantity(table, key: str, where: str, units: UnitSystem, *, strict: bool, de
 
 
 def build(where: str, constructor, *args, **kwargs):
-    """Call a dataclass constructor, placing its errors under ``where``."""
+    """Call a dataclass constructor (or a function of the case's values), placing its errors under ``where``:
+    an argument it refuses came from the case file, so it is named as the key there."""
     try:
         return constructor(*args, **kwargs)
-    except CaseError as error:
-        raise error.under(where) from None
+    except InputError as error:
+        raise CaseError(error.field, error.message).under(where) from None
 
 
 def choice(table, key: str, allowed: tuple[str, ...], where: str, default: str) -> str:

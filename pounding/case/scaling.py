@@ -18,7 +18,7 @@ import numpy as np
 
 from pounding import defaults
 from pounding.case.case import Case
-from pounding.errors import CaseError, finite_number, quote
+from pounding.errors import ArgumentError, CaseError, finite_number, quote
 from pounding.hazard.sources import RecordedMotions
 from pounding.units import STANDARD_GRAVITY
 
@@ -45,7 +45,7 @@ class PeakGroundAcceleration:
 
     def __init__(self, case: Case):
         if not isinstance(case, Case):
-            raise CaseError("case", f"must be a Case, got {type(case).__name__}")
+            raise ArgumentError("case", f"must be a Case, got {type(case).__name__}")
         if case.recorded:
             case = _records_at_one_peak(case)
             self.reference = case.hazard.records[0].peak
@@ -62,9 +62,9 @@ class PeakGroundAcceleration:
 
     def case_at(self, pga: float) -> Case:
         """The case with expected PGA ``pga`` [m/s^2] (recorded motions: each record's peak)."""
-        pga = finite_number("pga", pga)
+        pga = finite_number("pga", pga, error=ArgumentError)
         if not pga > 0:
-            raise CaseError("pga", f"must be > 0 g, got {quote(pga / STANDARD_GRAVITY)} g")
+            raise ArgumentError("pga", f"must be > 0 g, got {quote(pga / STANDARD_GRAVITY)} g")
         factor = pga / self.reference
         case = self.case
         excitation = case.excitation
@@ -97,10 +97,10 @@ def _records_at_one_peak(case: Case) -> Case:
 def _scaled_building(building, period: float, where: str):
     """``building`` with every storey stiffness times f = (T / period)^2, T its fundamental period (F2): the mode
     shapes, masses, yield drifts and damping ratio stay; an explicit storey damping is scaled by sqrt(f) to keep it."""
-    period = finite_number(where, period)
+    period = finite_number(where, period, error=ArgumentError)
     low, high = defaults.PERIOD_RANGE
     if not low <= period <= high:
-        raise CaseError(where, f"must lie in [{low:g}, {high:g}] s, got {quote(period)} s")
+        raise ArgumentError(where, f"must lie in [{low:g}, {high:g}] s, got {quote(period)} s")
     factor = (float(building.periods[0]) / period) ** 2
     storeys = []
     for storey in building.storeys:
@@ -108,7 +108,7 @@ def _scaled_building(building, period: float, where: str):
         try:
             storeys.append(dataclasses.replace(storey, stiffness=storey.stiffness * factor, damping=damping))
         except CaseError as error:
-            raise CaseError(where, f"{period:g} s makes a storey invalid: {error.message}") from None
+            raise ArgumentError(where, f"{period:g} s makes a storey invalid: {error.message}") from None
     return dataclasses.replace(building, storeys=tuple(storeys))
 
 
@@ -123,7 +123,7 @@ def with_fundamental_periods(case: Case, period1: float | None = None, period2: 
         return dataclasses.replace(case, buildings=tuple(buildings))
     except CaseError as error:  # a recorded motion shorter than five times the new longest period
         field = "period1" if period1 is not None else "period2"
-        raise CaseError(field, error.message) from None
+        raise ArgumentError(field, error.message) from None
 
 
 def adjusted(case: Case, adjustment: Mapping | None, scaling: PeakGroundAcceleration | None = None) -> Case:
@@ -132,7 +132,7 @@ def adjusted(case: Case, adjustment: Mapping | None, scaling: PeakGroundAccelera
     adjustment = dict(adjustment or {})
     unknown = sorted(set(adjustment) - set(ADJUSTMENTS))
     if unknown:
-        raise CaseError("adjustment", f"unknown key {unknown[0]!r}; allowed: {', '.join(ADJUSTMENTS)}")
+        raise ArgumentError("adjustment", f"unknown key {unknown[0]!r}; allowed: {', '.join(ADJUSTMENTS)}")
     if "pga" in adjustment:
         case = (scaling or PeakGroundAcceleration(case)).case_at(adjustment["pga"])
     if "period1" in adjustment or "period2" in adjustment:

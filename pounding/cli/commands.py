@@ -65,7 +65,7 @@ def _simulate(args) -> int:
         result = study(case, plan=MonteCarloPlan(records, seed, settings=Settings(tolerance=args.tolerance), progress=progress))
     try:  # a few ms beside seconds of simulation: the two methods side by side
         closed_form, failure = estimate(case, target_probability=args.design_gap or defaults.TARGET_PROBABILITY), None
-    except (ConvergenceError, ValueError, ArithmeticError) as error:  # CaseError, LinAlgError, overflow: the MC stands
+    except (ConvergenceError, ValueError, ArithmeticError) as error:  # InputError, LinAlgError, overflow: the MC stands
         closed_form, failure = None, " ".join(str(error).split()) or type(error).__name__  # one line: why not
     force_text = _force_text(args.units)
     error_text = lambda f, r: f"{100 * (f / r - 1):+.1f} %" if abs(f / r - 1) <= 1e4 else f"{f / r:.3g} times"
@@ -290,14 +290,14 @@ def _report(args) -> int:
     from pathlib import Path
 
     from pounding.case.case import load_case
-    from pounding.errors import CaseError, check_probability
+    from pounding.errors import ArgumentError, check_probability
     from pounding.output import check_target
     from pounding.simulation.monte_carlo import MonteCarloPlan, design_gap, simulate
 
     if args.design_gap is not None:
         check_probability(args.design_gap, "--design-gap")
         if not args.records:
-            raise CaseError("--design-gap", "needs records: give --records N (N >= 1)")
+            raise ArgumentError("--design-gap", "needs records: give --records N (N >= 1)")
     case = load_case(args.case)
     check_target(args.output, "--output", probe=True)  # before any work: "", a device, a folder, read-only are refused
     path = Path(args.output)
@@ -374,12 +374,8 @@ def _export(args) -> int:
 
 def _sweep(args) -> int:
     from pounding.cli import sweep
-    from pounding.errors import CaseError
 
-    try:
-        return sweep.run(args)
-    except CaseError as error:  # the library names the folder output_dir; the user wrote -o
-        raise (CaseError("--output", error.message) if error.field == "output_dir" else error) from None
+    return sweep.run(args)
 
 
 _COMMANDS = {
@@ -409,15 +405,16 @@ def main(argv: list[str] | None = None) -> int:
 
 def _run(args) -> int:
     """One command, its errors turned into one line and an exit code."""
-    from pounding.errors import CaseError, ConvergenceError, SimulationError
+    from pounding.cli.parser import error_line
+    from pounding.errors import ConvergenceError, InputError, SimulationError
     from pounding.output import describe_os_error
 
     try:
         status = _COMMANDS[args.command](args)
         sys.stdout.flush()  # a full disk or a closed pipe on stdout shows here, not at exit
         return status
-    except CaseError as error:
-        print(f"pounding {args.command}: error: {error}", file=sys.stderr)
+    except InputError as error:  # a library argument named as the option typed, a case file's key as written
+        print(f"pounding {args.command}: error: {error_line(args.command, error)}", file=sys.stderr)
         return EXIT_BAD_INPUT
     except (ConvergenceError, SimulationError) as error:  # a case the methods cannot compute: one line, no traceback
         print(f"pounding {args.command}: failed: {error}", file=sys.stderr)

@@ -14,10 +14,6 @@ from pounding.cli.arguments import bounded_number, increasing_values, record_cou
 
 __all__ = ["add_fragility", "add_spectrum", "run_fragility", "run_spectrum"]
 
-_OPTIONS = {"pga": "--pga", "capacity": "--capacity", "records": "--records", "period1": "--period1",
-            "period2": "--period2", "period_ratio": "--period-ratio"}
-"""The library's argument names as the command line writes them (an error names the option typed)."""
-
 
 def _common(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
@@ -89,18 +85,14 @@ def _plan(args, progress):
 
 
 def _run(args, compute, chart, title: str):
-    """Check the chart's target, compute (library errors named by the option typed), write the chart."""
-    from pounding.errors import CaseError
+    """Check the chart's target, compute, write the chart."""
     from pounding.output import check_target
 
     if args.output is not None:
         check_target(args.output, "--output", probe=True)
     points = len(getattr(args, "pga", None) or args.period1)
     with progress_bar(points * (args.records or 0), enabled=bool(args.records)) as progress:
-        try:
-            result = compute(progress)
-        except CaseError as error:
-            raise CaseError(_OPTIONS.get(error.field, error.field), error.message) from None
+        result = compute(progress)
     if args.output is not None:
         from pounding.report.curve_charts import write_chart_page
 

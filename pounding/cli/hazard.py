@@ -64,7 +64,7 @@ def records_command(args) -> int:
     from pounding import defaults
     from pounding.hazard.accelerograms import Accelerogram, write_at2, write_csv
     from pounding.case.case import load_case
-    from pounding.errors import CaseError
+    from pounding.errors import ArgumentError
     from pounding.simulation.ground_motion import check_suite_range, ground_motion_batches, suite_size
     from pounding.output import check_folder
     from pounding.simulation.system import check_records
@@ -75,7 +75,7 @@ def records_command(args) -> int:
         print(f"pounding records: note: --records and --seed do not apply to recorded motions; writing all {size}", flush=True)
     records = size or args.records
     if records is None:
-        raise CaseError("--records", "give the number of records to write, e.g. --records 100")
+        raise ArgumentError("--records", "give the number of records to write, e.g. --records 100")
     records, seed, _ = check_records(records, defaults.SEED if args.seed is None else args.seed, 0)
     check_suite_range(case, records, 0)
     directory = check_folder(args.output, "--output", create=True)

@@ -18,7 +18,7 @@ from pounding.cli.arguments import (
     whole_number_type,
 )
 
-__all__ = ["EXIT_BAD_INPUT", "parser"]
+__all__ = ["EXIT_BAD_INPUT", "error_line", "option_for", "parser"]
 
 EXIT_BAD_INPUT = 2
 
@@ -207,3 +207,38 @@ def parser() -> argparse.ArgumentParser:
     dashboard.add_argument("--show", action="store_true", help="open a browser tab")
     dashboard.add_argument("--allow-websocket-origin", action="append", default=[], help="extra allowed websocket origin (host:port)")
     return command
+
+
+_RENAMED = {"path": "output", "directory": "output", "output_dir": "output", "table_format": "format"}
+"""The library's arguments that the command line gives under another name (its ``dest``)."""
+
+
+def _options(command: str) -> dict[str, str]:
+    """Each ``dest`` of ``pounding command`` (its subcommands' included) and its long option (``--output``, not ``-o``)."""
+    commands = next(action for action in parser()._actions if isinstance(action, argparse._SubParsersAction))
+    found: dict[str, str] = {}
+    pending = [commands.choices[command]] if command in commands.choices else []
+    while pending:
+        for action in pending.pop()._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                pending += action.choices.values()
+            elif action.option_strings and action.dest != "help":
+                found.setdefault(action.dest, max(action.option_strings, key=len))
+    return found
+
+
+def option_for(command: str, field: str) -> str:
+    """The option of ``pounding command`` that gives the library's argument ``field``
+    (``records`` -> ``--records``, ``path`` -> ``--output``); ``field`` as it is when
+    no option gives it (the positional ``case``, a flag already)."""
+    return _options(command).get(_RENAMED.get(field, field), field)
+
+
+def error_line(command: str, error) -> str:
+    """A bad input in one line as the user typed it: an argument of the library as the
+    command's option; a key of the case file (a :class:`~pounding.errors.CaseError`) as it is."""
+    from pounding.errors import ArgumentError
+
+    if isinstance(error, ArgumentError):
+        return f"{option_for(command, error.field)}: {error.message}"
+    return str(error)

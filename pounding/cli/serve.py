@@ -111,23 +111,26 @@ def serve_dashboard(port: int = 5006, show: bool = False, extra_origins: list[st
 
     Raises
     ------
-    CaseError
-        ``port`` is not in [0, 65535] (field ``port``), or the dashboard script is missing.
+    ArgumentError
+        ``port`` is not in [0, 65535] (field ``port``).
+    FileNotFoundError
+        The dashboard script is missing.
     """
+    import errno
     import signal
     import subprocess
     import sys
     import threading
     import time
 
-    from pounding.errors import CaseError
+    from pounding.errors import ArgumentError
 
     problem = _port_error(port)
     if problem:
-        raise CaseError("port", problem)
+        raise ArgumentError("port", problem)
     app = dashboard_app_path()
     if not app.is_file():
-        raise CaseError("dashboard", f"the dashboard script {app} is missing; reinstall pounding (python3 -m pip install pounding)")
+        raise FileNotFoundError(errno.ENOENT, "the dashboard script is missing; reinstall pounding (python3 -m pip install pounding)", str(app))
     port = port or _free_port()
     command = [sys.executable, "-m", "pounding.cli.dashboard_server", str(app), "--port", str(port), "--num-procs", str(SERVER_PROCESSES)]
     origins = [f"localhost:{port}", f"127.0.0.1:{port}", *(extra_origins or [])]

@@ -62,7 +62,7 @@ def _json_value(value):
 def run(args: argparse.Namespace) -> int:
     """Execute ``pounding sweep`` with the arguments of :func:`add_arguments`.
 
-    Returns 0. Raises :class:`CaseError` on bad input (the CLI prints it on one
+    Returns 0. Raises :class:`~pounding.errors.InputError` on bad input (the CLI prints it on one
     line and exits 2); on Ctrl-C, says how to resume and re-raises.
     """
     from pounding.simulation.plan import MonteCarloPlan

@@ -12,7 +12,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.linalg import expm
 
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError
 from pounding.closed_form.linearization import StateSpace, lyapunov_covariance
 
 __all__ = ["time_varying_covariance"]
@@ -68,7 +68,7 @@ def time_varying_covariance(model: StateSpace, envelope, times, modulation: str 
     """
     times = np.asarray(times, dtype=float)
     if times.ndim != 1 or times.size < 1 or np.any(np.diff(times) <= 0.0):
-        raise CaseError("times", "must be a one-dimensional increasing array")
+        raise ArgumentError("times", "must be a one-dimensional increasing array")
     A = model.matrix
     values = _envelope_values(envelope, times)
     rows = None if outputs is None else np.atleast_2d(np.asarray(outputs, dtype=float))

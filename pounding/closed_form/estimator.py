@@ -22,7 +22,7 @@ from pounding.case.case import Case, as_case
 from pounding.mechanics.contact import peak_force_ratio
 from pounding.case.engineering import engineering_terms
 from pounding.closed_form.force_distribution import ForceDistribution, force_distribution
-from pounding.errors import CaseError, check_limit, check_probability
+from pounding.errors import ArgumentError, check_limit, check_probability
 from pounding.closed_form.gap_aware import (
     Crossings,
     expected_force_maximum,
@@ -283,8 +283,8 @@ def gap_curve(case: Case, crossings: Crossings, gaps, paper_force: float | None)
     """The recommended estimate at each of ``gaps`` [m] from the free motion's ``crossings``."""
     gaps = np.asarray(gaps, dtype=float).ravel()
     if gaps.size == 0 or np.any(gaps < 0) or not np.all(np.isfinite(gaps)):
-        raise CaseError("gaps", "must be finite numbers >= 0 m")
-    check_limit("gaps", gaps.size, defaults.MAX_GAPS, "gaps", "estimate fewer gaps at a time")
+        raise ArgumentError("gaps", "must be finite numbers >= 0 m")
+    check_limit("gaps", gaps.size, defaults.MAX_GAPS, "gaps", "estimate fewer gaps at a time", error=ArgumentError)
     impacts = crossings.intensity(gaps, np.zeros(1))[:, 0]
     # A curve for plots and design charts: 81 points in v^p (1e-4) keep 100 gaps within 10 ms.
     force = expected_force_maximum(crossings, gaps, case.contact, case.reduced_mass, crossings.damped(gaps), 81)

@@ -22,7 +22,7 @@ import numpy as np
 
 from pounding.mechanics.contact import impact_peak_force
 from pounding.random_vibration.crossing_kernels import U_MAX
-from pounding.errors import CaseError, check_probability, finite_number
+from pounding.errors import ArgumentError, CaseError, check_probability, finite_number
 from pounding.closed_form.gap_aware import Crossings, opposing_forces
 from pounding.closed_form.pair import LinearizedPair
 
@@ -51,9 +51,9 @@ class ForceDistribution:
 
     def probability_exceeding(self, capacity: float) -> float:
         """P(F_max > capacity) for a capacity [N] > 0."""
-        capacity = finite_number("capacity", capacity)
+        capacity = finite_number("capacity", capacity, error=ArgumentError)
         if not capacity > 0:
-            raise CaseError("capacity", f"must be > 0 N, got {capacity:g}")
+            raise ArgumentError("capacity", f"must be > 0 N, got {capacity:g}")
         return float(1.0 - self.probability_below(capacity))
 
     def quantile(self, probability: float) -> float:

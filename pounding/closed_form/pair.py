@@ -17,7 +17,7 @@ from pounding import defaults
 from pounding.case.case import Case
 from pounding.closed_form.covariance_history import time_varying_covariance
 from pounding.random_vibration.crossing_kernels import vanmarcke_bandwidth
-from pounding.errors import CaseError, ConvergenceError
+from pounding.errors import ArgumentError, CaseError, ConvergenceError
 from pounding.closed_form.impact_damping import ImpactDamping, impact_damping, jump_modes
 from pounding.closed_form.linearization import (
     LinearizedBuilding,
@@ -79,7 +79,7 @@ class LinearizedPair:
     def of(cls, case: Case, **linearization) -> LinearizedPair:
         """Linearize ``case``'s buildings (options of :func:`~pounding.closed_form.linearization.linearize`)."""
         if not isinstance(case, Case):
-            raise CaseError("case", f"must be a Case (from load_case), got {type(case).__name__}")
+            raise ArgumentError("case", f"must be a Case (from load_case), got {type(case).__name__}")
         return cls(case, tuple(linearize_pair(case, **linearization)))
 
     @property

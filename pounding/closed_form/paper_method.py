@@ -13,7 +13,7 @@ import numpy as np
 
 from pounding import defaults
 from pounding.mechanics.contact import undamped_peak_force
-from pounding.errors import CaseError, finite_number
+from pounding.errors import ArgumentError, finite_number
 from pounding.random_vibration.peaks import davenport_peak_factor, envelope_variance, equivalent_stationary
 
 __all__ = ["PAPER_VARIANCE_METHODS", "PaperEstimate", "check_michaelov_n1", "paper_estimate"]
@@ -61,10 +61,10 @@ class PaperEstimate:
 
 
 def check_michaelov_n1(n1) -> None:
-    """Raise :class:`CaseError` unless n1 lies in :data:`~pounding.defaults.MICHAELOV_N1_RANGE`."""
+    """Raise :class:`ArgumentError` unless n1 lies in :data:`~pounding.defaults.MICHAELOV_N1_RANGE`."""
     low, high = defaults.MICHAELOV_N1_RANGE
-    if not low <= finite_number("michaelov_n1", n1) <= high:
-        raise CaseError("michaelov_n1", f"must lie in [{low:g}, {high:g}], got {n1!r}")
+    if not low <= finite_number("michaelov_n1", n1, error=ArgumentError) <= high:
+        raise ArgumentError("michaelov_n1", f"must lie in [{low:g}, {high:g}], got {n1!r}")
 
 
 def paper_estimate(pair, variance_method: str = defaults.PAPER_VARIANCE, michaelov_n1: float = defaults.MICHAELOV_N1) -> PaperEstimate:
@@ -96,7 +96,7 @@ def paper_estimate(pair, variance_method: str = defaults.PAPER_VARIANCE, michael
             history = pair.covariance_history(times)
             variance = history[:, 2, 2] + history[:, 3, 3] - 2 * history[:, 2, 3]
         else:
-            raise CaseError("variance_method", f"must be one of {', '.join(PAPER_VARIANCE_METHODS)}, got {variance_method!r}")
+            raise ArgumentError("variance_method", f"must be one of {', '.join(PAPER_VARIANCE_METHODS)}, got {variance_method!r}")
         variance_eq, duration = equivalent_stationary(variance, times, n1=michaelov_n1)  # Eq. 29
         sigma = sigma_equivalent = math.sqrt(variance_eq)
     factor = davenport_peak_factor(rate, duration)  # Eq. 23 / 30

@@ -26,7 +26,7 @@ import numpy as np
 from pounding import __version__, defaults
 from pounding.case.case import Case
 from pounding.mechanics.contact import Contact, hertz_peak_penetration
-from pounding.errors import CaseError, quote
+from pounding.errors import ArgumentError, CaseError, quote
 from pounding.simulation.ground_motion import check_suite_range, ground_motion_batches, record_names
 from pounding.export.opensees_script import CONTACT_MATERIALS
 from pounding.output import check_folder, write_atomic
@@ -114,14 +114,14 @@ class OpenSeesExport:
 
 
 def _writable_folder(directory, field: str) -> Path:
-    """``directory`` made if missing and proven writable (a file made and removed), else :class:`CaseError` naming ``field``."""
+    """``directory`` made if missing and proven writable (a file made and removed), else :class:`ArgumentError` naming ``field``."""
     try:
         folder = check_folder(directory, field, create=True)
         descriptor, name = tempfile.mkstemp(prefix=".pounding-export.", dir=folder)
         os.close(descriptor)
         os.unlink(name)
     except OSError as error:
-        raise CaseError(field, f"{quote(os.fspath(directory), 80)} cannot be written: {error.strerror or error}") from None
+        raise ArgumentError(field, f"{quote(os.fspath(directory), 80)} cannot be written: {error.strerror or error}") from None
     return folder
 
 
@@ -138,13 +138,14 @@ def export_opensees(case: Case, directory, records: int, seed: int = defaults.SE
         Number of records, >= 1.
     seed : int
     field : str
-        Names ``directory`` in errors (``--output`` on the command line).
+        Names ``directory`` in errors.
 
     Raises
     ------
     CaseError
-        A contact law OpenSees has no material for (naming ``contact.model``), a bad record count, or a
-        folder that cannot be written (naming ``field``).
+        A contact law OpenSees has no material for (naming ``contact.model``).
+    ArgumentError
+        A bad record count, or a folder that cannot be written (naming ``field``).
     """
     from pounding.simulation.monte_carlo import simulate  # the impacts' speeds choose the step: a few ms a record
 
@@ -210,12 +211,12 @@ def model_script(case: Case, records: list[dict], time_step: float, reason: str,
 
     ``records`` holds one dict per record: ``file`` (relative to model.py), ``time_step`` [s],
     ``samples`` and ``name``."""
-    study = f"--records {count}" if case.recorded else f"--records {count} --seed {seed}"
+    study = f"records={count}" if case.recorded else f"records={count}, seed={seed}"
     header = [
         "#!/usr/bin/env python3",
         f'"""OpenSeesPy model of the pounding case {case.name!r}, {count} record(s); written by pounding {__version__}.',
         "",
-        f"Made by `pounding export opensees {case.name} {study} -o DIR`: `pounding simulate {case.name} {study}`",
+        f"Made by pounding's OpenSees export ({study}): `pounding.simulate({case.name!r}, {study})`",
         "integrates the same records (records/: the ground acceleration [m/s^2], one sample a line, from t = 0).",
         "",
         "    python model.py                 each record: a line, then one JSON object on the last line:",

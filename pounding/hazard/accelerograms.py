@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from pounding import defaults
-from pounding.errors import CaseError, check_limit, described, finite_number, quote
+from pounding.errors import ArgumentError, CaseError, check_limit, described, finite_number, quote
 from pounding.units import STANDARD_GRAVITY
 
 __all__ = [
@@ -108,9 +108,9 @@ class Accelerogram:
 
     def scaled(self, factor) -> "Accelerogram":
         """The record times ``factor`` (a finite number > 0)."""
-        value = finite_number("scale", factor)
+        value = finite_number("factor", factor, error=ArgumentError)
         if not value > 0:
-            raise CaseError("scale", f"must be a finite number > 0, got {quote(value)}")
+            raise ArgumentError("factor", f"must be a finite number > 0, got {quote(value)}")
         return Accelerogram(self.name, self.time_step, self.acceleration * value)
 
 

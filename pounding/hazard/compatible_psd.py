@@ -50,7 +50,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import nnls
 
-from pounding.errors import CaseError, finite_number, quote, whole_number
+from pounding.errors import ArgumentError, finite_number, quote, whole_number
 from pounding.hazard.excitation import Excitation, ShinozukaSato
 from pounding.hazard.filter_bank import COMPONENTS_MAX, FilterBank
 from pounding.random_vibration.peak_factors import vanmarcke_expected_peak
@@ -147,7 +147,7 @@ def random_vibration_spectrum(spectrum, periods, duration, envelope=None, cutoff
     duration = _positive("duration", duration)
     periods = np.asarray(periods, dtype=float)
     if not (periods.ndim == 1 and periods.size and np.all(np.isfinite(periods)) and np.all(periods > 0)):
-        raise CaseError("periods", "must be a non-empty sequence of periods > 0 s")
+        raise ArgumentError("periods", "must be a non-empty sequence of periods > 0 s")
     omega = _grid(cutoff_frequency)
     weights = 2.0 * np.asarray(spectrum.psd(omega), dtype=float) * _quadrature(omega)
     return _rvt(omega, weights, periods, duration, envelope, damping)
@@ -194,7 +194,7 @@ def _minimax(rows):
     bounds_b = np.concatenate([np.ones(count), -np.ones(count)])
     solution = linprog(cost, A_ub=bounds_a, b_ub=bounds_b, bounds=[(0, None)] * (size + 1), method="highs")
     if not solution.success:
-        raise CaseError("target", f"no non-negative bank fits the spectrum ({solution.message})")
+        raise ArgumentError("target", f"no non-negative bank fits the spectrum ({solution.message})")
     return solution.x[:-1]
 
 
@@ -237,9 +237,9 @@ class CompatibleSpectrum:
 
 
 def _positive(field, value):
-    value = finite_number(field, value)
+    value = finite_number(field, value, error=ArgumentError)
     if not value > 0:
-        raise CaseError(field, f"must be a finite number > 0, got {quote(value)}")
+        raise ArgumentError(field, f"must be a finite number > 0, got {quote(value)}")
     return value
 
 
@@ -248,15 +248,15 @@ def compatible_spectrum(target, duration, envelope=None, cutoff_frequency=2.0 * 
     """The FilterBank compatible with the design spectrum ``target`` (C4-C6) for records lasting
     ``duration`` [s] under ``envelope`` (ShinozukaSato or None), cut at ``cutoff_frequency`` [rad/s]."""
     if not hasattr(target, "pseudo_acceleration"):
-        raise CaseError("target", "must be a design spectrum (Eurocode8Spectrum, ASCE7Spectrum, TabulatedSpectrum)")
+        raise ArgumentError("target", "must be a design spectrum (Eurocode8Spectrum, ASCE7Spectrum, TabulatedSpectrum)")
     duration = _positive("duration", duration)
     cutoff_frequency = _positive("cutoff_frequency", cutoff_frequency)
     damping = _positive("damping", damping)
-    components = whole_number("components", components, 2, COMPONENTS_MAX)
+    components = whole_number("components", components, 2, COMPONENTS_MAX, error=ArgumentError)
     if not damping < 1:
-        raise CaseError("damping", f"must lie in (0, 1), got {quote(damping)}")
+        raise ArgumentError("damping", f"must lie in (0, 1), got {quote(damping)}")
     if not 2.0 * math.pi / CONTROL_PERIODS[0] < cutoff_frequency:
-        raise CaseError("cutoff_frequency", f"must exceed 2 pi / {CONTROL_PERIODS[0]:g} s, got {cutoff_frequency:.4g} rad/s")
+        raise ArgumentError("cutoff_frequency", f"must exceed 2 pi / {CONTROL_PERIODS[0]:g} s, got {cutoff_frequency:.4g} rad/s")
     # validates duration, time_step and the cutoff against the record's sampling
     Excitation(FilterBank(1.0, (1.0,), (0.5,), (1.0,)), duration, envelope, time_step, cutoff_frequency)
     periods = np.asarray(CONTROL_PERIODS)
@@ -270,7 +270,7 @@ def compatible_spectrum(target, duration, envelope=None, cutoff_frequency=2.0 * 
     relative = np.maximum(psd, 1e-2 * psd.max())  # below it the misfit counts absolutely
     weights, _ = nnls((responses / relative).T, np.ones(omega.size))
     if not np.any(weights > 0):
-        raise CaseError("target", "no non-negative bank fits the spectrum's starting PSD")
+        raise ArgumentError("target", "no non-negative bank fits the spectrum's starting PSD")
     # lambda_0 of each oscillator per unit weight of each component: Sa^2 = wn^4 eta^2 (V @ w), C6
     wn = 2.0 * np.pi / periods[:, None]
     gain = 1.0 / (np.square(wn**2 - omega**2) + np.square(2.0 * damping * wn * omega))

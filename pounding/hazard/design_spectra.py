@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pounding.errors import CaseError, described, finite_number, finite_numbers, quote
+from pounding.errors import ArgumentError, CaseError, described, finite_number, finite_numbers, quote
 
 __all__ = [
     "ASCE7Spectrum",
@@ -71,9 +71,9 @@ def _periods(periods) -> np.ndarray:
     try:
         values = np.asarray(periods, dtype=float)
     except (TypeError, ValueError):
-        raise CaseError("periods", f"must be numbers, got {quote(periods)}") from None
+        raise ArgumentError("periods", f"must be numbers, got {quote(periods)}") from None
     if not (np.all(np.isfinite(values)) and np.all(values >= 0)):
-        raise CaseError("periods", "must be finite numbers >= 0 s")
+        raise ArgumentError("periods", "must be finite numbers >= 0 s")
     return values
 
 

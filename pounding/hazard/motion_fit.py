@@ -44,7 +44,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from pounding.hazard.accelerograms import G, Accelerogram
-from pounding.errors import CaseError, described, finite_number, quote
+from pounding.errors import ArgumentError, CaseError, described, finite_number, quote
 from pounding.hazard.excitation import FILTER_DAMPING_MAX, FILTER_FREQUENCY_MAX, CloughPenzien, KanaiTajimi
 
 __all__ = [
@@ -91,9 +91,9 @@ def _crossing(intensity: np.ndarray, level: float, step: float) -> float:
 
 def significant_duration(accelerogram: Accelerogram, low: float = 0.05, high: float = 0.95) -> tuple[float, float]:
     """(t_low, t_high) [s]: where the Arias intensity reaches ``low`` and ``high`` of its total, R2."""
-    low, high = finite_number("low", low), finite_number("high", high)
+    low, high = finite_number("low", low, error=ArgumentError), finite_number("high", high, error=ArgumentError)
     if not 0.0 <= low < high <= 1.0:
-        raise CaseError("high", f"need 0 <= low < high <= 1, got low = {quote(low)}, high = {quote(high)}")
+        raise ArgumentError("high", f"need 0 <= low < high <= 1, got low = {quote(low)}, high = {quote(high)}")
     intensity = arias_intensity(accelerogram)
     total = intensity[-1]
     if not (total > 0 and math.isfinite(total)):
@@ -197,8 +197,8 @@ def _mean_periodogram(segments, cutoff: float) -> tuple[np.ndarray, np.ndarray, 
     low = max(LOWEST_FREQUENCY, 2.0 * math.pi / durations.min())
     if not cutoff > 2.0 * low:
         shortest = segments[int(np.argmin(durations))][3]
-        raise CaseError("cutoff_frequency", f"must exceed twice the lowest fitted frequency, {2 * low:.3g} rad/s "
-                                            f"(2 pi / the strong-motion duration of {quote(shortest, 60)}), got {cutoff:.4g}")
+        raise ArgumentError("cutoff_frequency", f"must exceed twice the lowest fitted frequency, {2 * low:.3g} rad/s "
+                                                f"(2 pi / the strong-motion duration of {quote(shortest, 60)}), got {cutoff:.4g}")
     edges = _bin_edges(low, cutoff, 2.0 * math.pi / durations.min())
     bins = edges.size - 1
     power = np.zeros(bins)
@@ -271,17 +271,17 @@ def fit_excitation(records: Sequence[Accelerogram], cutoff_frequency: float) -> 
     every record's Nyquist frequency pi / dt. Records may differ in time step and length.
     """
     if isinstance(records, Accelerogram) or not isinstance(records, Sequence) or not records:
-        raise CaseError("records", f"must be a non-empty sequence of Accelerogram, got {described(records)}")
+        raise ArgumentError("records", f"must be a non-empty sequence of Accelerogram, got {described(records)}")
     for record in records:
         if not isinstance(record, Accelerogram):
-            raise CaseError("records", f"must hold Accelerogram only, got {described(record)}")
-    cutoff = finite_number("cutoff_frequency", cutoff_frequency)
+            raise ArgumentError("records", f"must hold Accelerogram only, got {described(record)}")
+    cutoff = finite_number("cutoff_frequency", cutoff_frequency, error=ArgumentError)
     if not cutoff > 0:
-        raise CaseError("cutoff_frequency", f"must be a finite number > 0 rad/s, got {quote(cutoff)}")
+        raise ArgumentError("cutoff_frequency", f"must be a finite number > 0 rad/s, got {quote(cutoff)}")
     for record in records:
         nyquist = math.pi / record.time_step
         if not cutoff < nyquist:
-            raise CaseError("cutoff_frequency", f"{cutoff:.4g} rad/s is not below {quote(record.name, 60)}'s Nyquist "
+            raise ArgumentError("cutoff_frequency", f"{cutoff:.4g} rad/s is not below {quote(record.name, 60)}'s Nyquist "
                                                 f"frequency pi/dt = {nyquist:.4g} rad/s; lower it")
     segments = []
     for record in records:
@@ -290,7 +290,7 @@ def fit_excitation(records: Sequence[Accelerogram], cutoff_frequency: float) -> 
     omega, mean, counts = _mean_periodogram(segments, cutoff)
     positive = mean > 1e-12 * mean.max()
     if np.count_nonzero(positive) < 8:
-        raise CaseError("records", f"the suite's strong motion has power in {np.count_nonzero(positive)} frequency bins "
+        raise ArgumentError("records", f"the suite's strong motion has power in {np.count_nonzero(positive)} frequency bins "
                                    f"below {cutoff:.4g} rad/s; at least 8 are needed to fit a spectrum")
     w, log_target = omega[positive], np.log10(mean[positive])
     weights = np.sqrt(counts[positive] / np.mean(counts[positive]))  # R5: 1 / the scatter of a bin's log mean

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError
 from pounding.units import STANDARD_GRAVITY
 
 __all__ = ["pseudo_acceleration_spectrum"]
@@ -22,9 +22,9 @@ def pseudo_acceleration_spectrum(accelerations, time_step: float, periods, dampi
     records = np.atleast_2d(np.asarray(accelerations, dtype=float))
     periods = np.asarray(periods, dtype=float)
     if not (np.all(np.isfinite(periods)) and np.all(periods > 0)):
-        raise CaseError("periods", "must be finite and > 0 s")
+        raise ArgumentError("periods", "must be finite and > 0 s")
     if np.any(periods < 2.0 * 5 * time_step):  # pyrotd asks for the record's Nyquist 5 times the oscillator's frequency
-        raise CaseError("periods", f"must be at least 10 time steps ({10 * time_step:g} s) to be resolved by the records")
+        raise ArgumentError("periods", f"must be at least 10 time steps ({10 * time_step:g} s) to be resolved by the records")
     length = 1 << (2 * records.shape[1] - 1).bit_length()
     padded = np.zeros((records.shape[0], length))
     padded[:, : records.shape[1]] = records / STANDARD_GRAVITY

@@ -35,7 +35,7 @@ from functools import lru_cache
 import numpy as np
 
 from pounding.mechanics import integrator
-from pounding.errors import CaseError, finite_number, quote
+from pounding.errors import ArgumentError, CaseError, finite_number, quote
 from pounding.mechanics.integrator import contact_force, single_impact_peak
 
 __all__ = [
@@ -269,7 +269,7 @@ def opposed_peak_force_ratio(model: str, restitution: float, phi):
     """
     phi = np.asarray(phi, dtype=float)
     if np.any(phi < 0.0) or not np.all(np.isfinite(phi)):
-        raise CaseError("phi", "must be finite numbers >= 0 (a force opposing the approach)")
+        raise ArgumentError("phi", "must be finite numbers >= 0 (a force opposing the approach)")
     return np.interp(np.arcsinh(phi / _OPPOSED_SCALE), _OPPOSED_GRID, _opposed_table(model, float(restitution)))
 
 
@@ -282,7 +282,7 @@ def impact_peak_force(contact: Contact, approach_velocity, reduced_mass: float, 
     undamped = undamped_peak_force(contact, approach_velocity, reduced_mass)
     opposing = np.asarray(opposing_force, dtype=float)
     if np.any(opposing < 0.0) or not np.all(np.isfinite(opposing)):
-        raise CaseError("opposing_force", f"must be finite and >= 0 N (it opposes the approach), got {opposing_force!r}")
+        raise ArgumentError("opposing_force", f"must be finite and >= 0 N (it opposes the approach), got {opposing_force!r}")
     if not np.any(opposing):
         return peak_force_ratio(contact.model, contact.restitution) * undamped
     undamped, opposing = np.broadcast_arrays(np.asarray(undamped, dtype=float), opposing)

@@ -54,7 +54,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import ndtr, owens_t
 
-from pounding.errors import CaseError, finite_number, quote
+from pounding.errors import ArgumentError, CaseError, finite_number, quote
 from pounding.random_vibration.peaks import VANMARCKE_DOUBLE_BARRIER
 
 __all__ = [
@@ -119,30 +119,30 @@ def vanmarcke_expected_peak(sigma, nu0, delta, times, *, growth=None, time_step=
     """
     times = np.asarray(times, dtype=float)
     if times.ndim != 1 or times.size < 2 or not np.all(np.isfinite(times)) or np.any(np.diff(times) <= 0):
-        raise CaseError("times", "must be at least 2 finite, strictly increasing instants")
+        raise ArgumentError("times", "must be at least 2 finite, strictly increasing instants")
     sigma = np.asarray(sigma, dtype=float)
     if sigma.shape[-1:] != times.shape or not np.all(np.isfinite(sigma)) or np.any(sigma < 0):
-        raise CaseError("sigma", f"must be finite numbers >= 0 with {times.size} instants on its last axis")
+        raise ArgumentError("sigma", f"must be finite numbers >= 0 with {times.size} instants on its last axis")
     batch = sigma.shape[:-1]
     nu0 = np.broadcast_to(np.asarray(nu0, dtype=float), batch)
     delta = np.broadcast_to(np.asarray(delta, dtype=float), batch)
     if not (np.all(np.isfinite(nu0)) and np.all(nu0 > 0)):
-        raise CaseError("nu0", "must be finite and > 0 1/s")
+        raise ArgumentError("nu0", "must be finite and > 0 1/s")
     if not (np.all(delta > 0) and np.all(delta <= 1)):
-        raise CaseError("delta", "must lie in (0, 1]")
+        raise ArgumentError("delta", "must lie in (0, 1]")
     peak = sigma.max(axis=-1, initial=0.0)
     if np.any(peak <= 0):
-        raise CaseError("sigma", "is zero throughout for some process: it has no peak to expect")
+        raise ArgumentError("sigma", "is zero throughout for some process: it has no peak to expect")
     sampled = time_step is not None or sample_correlation is not None
     if sampled:
         if time_step is None or sample_correlation is None:
-            raise CaseError("time_step", "needs sample_correlation too (P5), or neither")
-        step = finite_number("time_step", time_step)
+            raise ArgumentError("time_step", "needs sample_correlation too (P5), or neither")
+        step = finite_number("time_step", time_step, error=ArgumentError)
         if not step > 0:
-            raise CaseError("time_step", f"must be > 0 s, got {quote(step)}")
+            raise ArgumentError("time_step", f"must be > 0 s, got {quote(step)}")
         rho = np.broadcast_to(np.asarray(sample_correlation, dtype=float), batch)
         if not (np.all(rho > -1) and np.all(rho < 1)):
-            raise CaseError("sample_correlation", "must lie in (-1, 1)")
+            raise ArgumentError("sample_correlation", "must lie in (-1, 1)")
         slope = np.sqrt((1.0 - rho) / (1.0 + rho))
     weights = _trapezoid_weights(times)
     duration = times[-1] - times[0]
@@ -158,7 +158,7 @@ def vanmarcke_expected_peak(sigma, nu0, delta, times, *, growth=None, time_step=
     if growth is not None:
         growth = np.broadcast_to(np.asarray(growth, dtype=float), sigma.shape)
         if not np.all(np.isfinite(growth)):
-            raise CaseError("growth", "must be finite numbers [1/s], one per instant")
+            raise ArgumentError("growth", "must be finite numbers [1/s], one per instant")
         eta = growth[..., None, :] * r / (2.0 * np.pi * nu0 * delta)[..., None, None]
         clumping = clumping * (np.exp(-0.5 * eta * eta) + np.sqrt(2.0 * np.pi) * eta * ndtr(eta))
     if sampled:
@@ -228,9 +228,9 @@ def expected_peak_ground_acceleration(excitation, sampled: bool = True) -> float
 
 def intensity_for_peak_ground_acceleration(excitation, pga) -> float:
     """The G0 [m^2/s^3] for which E[PGA] of ``excitation``'s records is ``pga`` [m/s^2] (P6)."""
-    pga = finite_number("pga", pga)
+    pga = finite_number("pga", pga, error=ArgumentError)
     if not pga > 0:
-        raise CaseError("pga", f"must be > 0 m/s^2, got {quote(pga)}")
+        raise ArgumentError("pga", f"must be > 0 m/s^2, got {quote(pga)}")
     g0 = excitation.spectrum.G0
     if not g0 > 0:
         raise CaseError("excitation.spectrum.G0", "must be > 0 to be scaled to a peak ground acceleration")

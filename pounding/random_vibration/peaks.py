@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from pounding.random_vibration.crossing_kernels import clumped_crossings, merged_instants, vanmarcke_clumps
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError, CaseError
 
 __all__ = [
     "EULER_GAMMA",
@@ -133,16 +133,16 @@ def expected_absolute_peak(sigma, sigma_derivative, weights, bandwidth: float, p
     """
     sigma, rate_sigma, weights = (np.asarray(a, dtype=float).ravel() for a in (sigma, sigma_derivative, weights))
     if not sigma.size == rate_sigma.size == weights.size:
-        raise CaseError("weights", f"sigma, sigma_derivative and weights must have one value per instant, got sizes "
-                        f"{sigma.size}, {rate_sigma.size}, {weights.size}")
+        raise ArgumentError("weights", f"sigma, sigma_derivative and weights must have one value per instant, got sizes "
+                            f"{sigma.size}, {rate_sigma.size}, {weights.size}")
     for name, values in (("sigma", sigma), ("sigma_derivative", rate_sigma), ("weights", weights)):
         if not (values.size and np.isfinite(values).all() and values.min() >= 0.0):
-            raise CaseError(name, "must be finite numbers >= 0, one per instant")
+            raise ArgumentError(name, "must be finite numbers >= 0, one per instant")
     if not 0.0 < bandwidth <= 1.0:
-        raise CaseError("bandwidth", f"must lie in (0, 1], got {bandwidth!r}")
+        raise ArgumentError("bandwidth", f"must lie in (0, 1], got {bandwidth!r}")
     moving = (sigma > 0) & (rate_sigma > 0) & (weights > 0)
     if not np.any(moving):
-        raise CaseError("sigma", "the response never moves: it has no peak to expect")
+        raise ArgumentError("sigma", "the response never moves: it has no peak to expect")
     sigma, rate, weights = merged_instants(sigma[moving], rate_sigma[moving] / (np.pi * sigma[moving]), weights[moving])
     rate = weights * rate  # w_t 2 nu_t
     # Up to where fewer than 1e-4 crossings are expected even at the largest sigma.
@@ -243,16 +243,16 @@ def equivalent_stationary(variance_of_t, times, n1: float = 3):
     variance = np.asarray(variance_of_t, dtype=float)
     times = np.asarray(times, dtype=float)
     if variance.shape != times.shape or times.ndim != 1 or times.size < 2:
-        raise CaseError("times", "needs at least two times, one per variance")
+        raise ArgumentError("times", "needs at least two times, one per variance")
     if np.any(np.diff(times) <= 0.0):
-        raise CaseError("times", "must increase")
+        raise ArgumentError("times", "must increase")
     if not n1 > 0:
-        raise CaseError("n1", f"must be > 0, got {n1!r}")
+        raise ArgumentError("n1", f"must be > 0, got {n1!r}")
     if np.any(variance < 0.0) or not np.all(np.isfinite(variance)):
-        raise CaseError("variance_of_t", "must be finite and >= 0")
+        raise ArgumentError("variance_of_t", "must be finite and >= 0")
     peak = variance.max()
     if peak == 0.0:
-        raise CaseError("variance_of_t", "is zero throughout: no response")
+        raise ArgumentError("variance_of_t", "is zero throughout: no response")
     # Work with sigma^2 / max so high powers neither underflow nor overflow.
     ratio = variance / peak
     low, high = np.trapezoid(ratio**n1, times), np.trapezoid(ratio ** (n1 + 1), times)

@@ -37,7 +37,7 @@ def _table(caption: str, header: list[str], rows: list[list[str]]) -> str:
     return f"<table><caption>{html.escape(caption)}</caption><tr>{head}</tr>{body}</table>"
 
 
-def write_chart_page(path: str | os.PathLike, title: str, layout, note: str, table: str, field: str = "--output") -> Path:
+def write_chart_page(path: str | os.PathLike, title: str, layout, note: str, table: str, field: str = "path") -> Path:
     """One HTML file: ``title``, the Bokeh ``layout``, ``note`` (plain text) and the numbers' ``table`` (HTML);
     written atomically (:func:`pounding.output.write_atomic`)."""
     from pounding.report.bokeh_embed import embedded

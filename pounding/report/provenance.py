@@ -15,7 +15,7 @@ import math
 import tomllib
 from dataclasses import dataclass
 
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError
 from pounding.presets import preset_text
 from pounding.report.case_keys import file_units, key_unit, normalized_case_file, to_units
 
@@ -97,7 +97,7 @@ def case_provenance(after: dict, preset: str | None = None, before: dict | None 
 
     Raises
     ------
-    CaseError
+    ArgumentError
         ``preset`` names no preset (naming ``preset``).
     """
     changes: tuple[CaseChange, ...] = ()
@@ -105,7 +105,7 @@ def case_provenance(after: dict, preset: str | None = None, before: dict | None 
         if before is None:
             text = preset_text(preset)
             if text is None:
-                raise CaseError("preset", f"{preset!r} is not a preset ('pounding cases' lists them)")
+                raise ArgumentError("preset", f"{preset!r} is not a preset ('pounding cases' lists them)")
             before = tomllib.loads(text)
         changes = case_changes(before, after, units)
     return ReportProvenance(source or preset or str(after.get("name", "case")), preset, changes, command)

@@ -183,7 +183,7 @@ def write_report(path: str | os.PathLike, snapshot: Snapshot | Case, units: str 
     title : str, optional
         The report's title; by default one naming the case (and "modified from preset X" when it is).
     field : str
-        The name of ``path`` in error messages (``--output`` on the command line).
+        The name of ``path`` in error messages.
     provenance : ReportProvenance, optional
         Where the case came from and the command that made the report
         (:func:`~.provenance.case_provenance`). Without it, a case named after a
@@ -197,7 +197,7 @@ def write_report(path: str | os.PathLike, snapshot: Snapshot | Case, units: str 
 
     Raises
     ------
-    CaseError
+    ArgumentError
         ``path`` cannot be a file: empty, an existing device, folder or other
         non-regular file, or in a folder that does not exist (naming ``field``).
     OSError

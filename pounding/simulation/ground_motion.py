@@ -9,7 +9,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from pounding.case.case import Case
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError
 from pounding.hazard.excitation import ground_accelerations
 
 __all__ = ["check_suite_range", "ground_motion_batches", "record_names", "samples_per_record", "suite_size"]
@@ -35,11 +35,11 @@ def record_names(case: Case, seed: int, indices) -> list[str]:
 
 
 def check_suite_range(case: Case, records: int, first_record: int) -> None:
-    """:class:`CaseError` when records ``first_record .. first_record + records - 1`` are not all in the recorded suite."""
+    """:class:`ArgumentError` (``records``) when records ``first_record .. first_record + records - 1`` are not all in the recorded suite."""
     size = suite_size(case)
     if size is not None and first_record + records > size:
-        raise CaseError("--records", f"the case has {size} recorded motions; records {first_record}..{first_record + records - 1} "
-                        "are not all among them")
+        raise ArgumentError("records", f"the case has {size} recorded motions; records {first_record}..{first_record + records - 1} "
+                            "are not all among them")
 
 
 def ground_motion_batches(case: Case, seed: int, indices) -> Iterator[tuple[slice, np.ndarray, float]]:

@@ -19,6 +19,7 @@ from pounding import defaults
 from pounding.mechanics import integrator as kernel
 from pounding.case.case import Case, as_case
 from pounding.errors import (
+    ArgumentError,
     CaseError,
     check_limit,
     check_probability,
@@ -95,7 +96,8 @@ def simulate(case: Case, plan: MonteCarloPlan | None = None, **options) -> Simul
     check_suite_range(case, records, first_record)
     # the records of one chunk are held at once by a thread: checked before they are drawn
     check_limit("chunk_size", min(settings.chunk_size, records) * samples_per_record(case), defaults.MAX_CHUNK_SAMPLES,
-                "samples held per thread (chunk_size x samples per record)", "lower Settings.chunk_size")
+                "samples held per thread (chunk_size x samples per record)", "lower Settings.chunk_size",
+                error=ArgumentError)
     system = kernel_system(case, settings)
     y0 = np.zeros(3 * system.n_floors)
     indices = np.arange(first_record, first_record + records)
@@ -301,42 +303,42 @@ def integrate(
         Names the record in error messages.
     """
     case, settings = check_study(case, settings, None, None)
-    time_step = finite_number("time_step", time_step)
+    time_step = finite_number("time_step", time_step, error=ArgumentError)
     if not time_step > 0:
-        raise CaseError("time_step", f"must be > 0 s, got {quote(time_step)}")
+        raise ArgumentError("time_step", f"must be > 0 s, got {quote(time_step)}")
     try:
         record = np.ascontiguousarray(ground_acceleration, dtype=float)
     except (TypeError, ValueError):
-        raise CaseError("ground_acceleration", f"must be an array of numbers, got {described(ground_acceleration)}") from None
+        raise ArgumentError("ground_acceleration", f"must be an array of numbers, got {described(ground_acceleration)}") from None
     if record.ndim != 1 or record.size < 2:
-        raise CaseError("ground_acceleration", "must be a 1-D array of at least 2 samples")
-    check_limit("ground_acceleration", record.size, defaults.MAX_SAMPLES_PER_RECORD, "samples", "integrate a shorter record")
+        raise ArgumentError("ground_acceleration", "must be a 1-D array of at least 2 samples")
+    check_limit("ground_acceleration", record.size, defaults.MAX_SAMPLES_PER_RECORD, "samples", "integrate a shorter record", error=ArgumentError)
     if not np.all(np.isfinite(record)):
-        raise CaseError("ground_acceleration", "must be finite numbers (no NaN or inf)")
-    return _integrate(case, record, time_step, initial_state, settings, str(label), "ground_acceleration")
+        raise ArgumentError("ground_acceleration", "must be finite numbers (no NaN or inf)")
+    return _integrate(case, record, time_step, initial_state, settings, str(label), "ground_acceleration", ArgumentError)
 
 
-def _check_history(field: str, samples: int, n_state: int) -> int | None:
+def _check_history(field: str, samples: int, n_state: int, error=CaseError) -> int | None:
     """The most steps a history of ``n_state`` states may keep (None: no limit). The
     history is kept at every step, at least one per sample: MAX_HISTORY_VALUES bounds it."""
     width = n_state + 2
     check_limit(field, samples * width, defaults.MAX_HISTORY_VALUES, f"history values ({samples:,} samples x {width})",
-                "integrate a shorter record")
+                "integrate a shorter record", error)
     return defaults.MAX_HISTORY_VALUES // width if defaults.limits_enabled() else None
 
 
 def _integrate(case: Case, record: np.ndarray, time_step: float, initial_state, settings: Settings, label: str,
-               field: str) -> TimeHistory:
-    """:func:`integrate` on checked inputs; ``field`` names the record's length in a limit's message."""
+               field: str, error=CaseError) -> TimeHistory:
+    """:func:`integrate` on checked inputs; ``field`` (an ``error``) names the record's length in a limit's message."""
     system = kernel_system(case, settings)
     n_state = 3 * system.n_floors
     try:
         y0 = np.zeros(n_state) if initial_state is None else np.array(initial_state, dtype=float)
     except (TypeError, ValueError):
-        raise CaseError("initial_state", f"must be an array of numbers, got {described(initial_state)}") from None
+        raise ArgumentError("initial_state", f"must be an array of numbers, got {described(initial_state)}") from None
     if y0.shape != (n_state,) or not np.all(np.isfinite(y0)):
-        raise CaseError("initial_state", f"must be {n_state} finite numbers (d, v, z of every floor), got shape {y0.shape}")
-    most = _check_history(field, record.size, n_state)
+        raise ArgumentError("initial_state", f"must be {n_state} finite numbers (d, v, z of every floor), got shape {y0.shape}")
+    most = _check_history(field, record.size, n_state, error)
     summary = np.zeros(kernel.SUMMARY_COLUMNS)
     capacity = 8 * record.size if most is None else min(8 * record.size, most)
     while True:
@@ -350,8 +352,8 @@ def _integrate(case: Case, record: np.ndarray, time_step: float, initial_state, 
         if summary[kernel.S_STATUS] != kernel.HISTORY_FULL:
             break
         if most is not None and capacity >= most:
-            raise CaseError(field, f"the time history takes more than {capacity:,} steps, beyond the {defaults.MAX_HISTORY_VALUES:,} values "
-                            f"kept; integrate a shorter record ({defaults.LIMITS_VARIABLE}=off lifts it)")
+            raise error(field, f"the time history takes more than {capacity:,} steps, beyond the {defaults.MAX_HISTORY_VALUES:,} values "
+                        f"kept; integrate a shorter record ({defaults.LIMITS_VARIABLE}=off lifts it)")
         capacity = capacity * 4 if most is None else min(capacity * 4, most)
     if summary[kernel.S_STATUS] != kernel.OK:
         raise failure(summary, label, settings)

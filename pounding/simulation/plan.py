@@ -12,7 +12,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
 from pounding import defaults
-from pounding.errors import CaseError, described, whole_number
+from pounding.errors import ArgumentError, described, whole_number
 from pounding.simulation.system import Settings, check_records
 
 __all__ = ["MonteCarloPlan", "as_plan"]
@@ -72,13 +72,13 @@ class MonteCarloPlan:
         if self.settings is None:
             object.__setattr__(self, "settings", Settings())
         elif not isinstance(self.settings, Settings):
-            raise CaseError("settings", f"must be a Settings or None, got {described(self.settings)}")
+            raise ArgumentError("settings", f"must be a Settings or None, got {described(self.settings)}")
         if self.progress is not None and not callable(self.progress):
-            raise CaseError("progress", f"must be a function progress(done, total) or None, got {described(self.progress)}")
+            raise ArgumentError("progress", f"must be a function progress(done, total) or None, got {described(self.progress)}")
         if self.cancel is not None and not callable(getattr(self.cancel, "is_set", None)):
-            raise CaseError("cancel", f"must be a threading.Event or None, got {described(self.cancel)}")
-        workers = None if self.workers is None else whole_number("workers", self.workers, 1)
-        chunk_records = whole_number("chunk_records", self.chunk_records, 1)
+            raise ArgumentError("cancel", f"must be a threading.Event or None, got {described(self.cancel)}")
+        workers = None if self.workers is None else whole_number("workers", self.workers, 1, error=ArgumentError)
+        chunk_records = whole_number("chunk_records", self.chunk_records, 1, error=ArgumentError)
         for name, value in (("records", records), ("seed", seed), ("first_record", first_record), ("workers", workers),
                             ("chunk_records", chunk_records)):
             object.__setattr__(self, name, value)
@@ -97,9 +97,9 @@ def as_plan(plan: MonteCarloPlan | None = None, changes: Mapping | None = None) 
     if plan is None:
         plan = MonteCarloPlan()
     elif not isinstance(plan, MonteCarloPlan):
-        raise CaseError("plan", f"must be a MonteCarloPlan or None, got {described(plan)}")
+        raise ArgumentError("plan", f"must be a MonteCarloPlan or None, got {described(plan)}")
     changes = dict(changes or {})
     unknown = sorted(set(changes) - set(_FIELDS))
     if unknown:
-        raise CaseError(unknown[0], f"is not an option of a Monte Carlo study; the options are {', '.join(_FIELDS)}")
+        raise ArgumentError(unknown[0], f"is not an option of a Monte Carlo study; the options are {', '.join(_FIELDS)}")
     return dataclasses.replace(plan, **changes) if changes else plan

@@ -12,7 +12,7 @@ from pounding import defaults
 from pounding.mechanics import integrator as kernel
 from pounding.case.case import Case, as_case
 from pounding.errors import (
-    CaseError,
+    ArgumentError,
     SimulationError,
     check_limit,
     described,
@@ -66,14 +66,14 @@ class Settings:
     chunk_size: int = 8
 
     def __post_init__(self):
-        tolerance = finite_number("tolerance", self.tolerance)
+        tolerance = finite_number("tolerance", self.tolerance, error=ArgumentError)
         if not 1e-12 <= tolerance <= 1e-2:
-            raise CaseError("tolerance", f"must lie in [1e-12, 1e-2], got {quote(tolerance)}")
-        limit = finite_number("displacement_limit", self.displacement_limit)
+            raise ArgumentError("tolerance", f"must lie in [1e-12, 1e-2], got {quote(tolerance)}")
+        limit = finite_number("displacement_limit", self.displacement_limit, error=ArgumentError)
         if not limit > 0:
-            raise CaseError("displacement_limit", f"must be > 0 m, got {quote(limit)}")
-        workers = None if self.workers is None else whole_number("workers", self.workers, 1, MAX_WORKERS)
-        chunk_size = whole_number("chunk_size", self.chunk_size, 1)
+            raise ArgumentError("displacement_limit", f"must be > 0 m, got {quote(limit)}")
+        workers = None if self.workers is None else whole_number("workers", self.workers, 1, MAX_WORKERS, error=ArgumentError)
+        chunk_size = whole_number("chunk_size", self.chunk_size, 1, error=ArgumentError)
         for name, value in (("tolerance", tolerance), ("displacement_limit", limit), ("workers", workers), ("chunk_size", chunk_size)):
             object.__setattr__(self, name, value)
 
@@ -101,12 +101,12 @@ class KernelSystem:
 def check_records(records, seed, first_record) -> tuple[int, int, int]:
     """The record count, seed and first record as Python ints, checked
     (numpy integers accepted; the count against MAX_RECORDS)."""
-    records = whole_number("records", records, 1)
-    check_limit("records", records, defaults.MAX_RECORDS, "records", "fewer records suffice for a mean")
-    seed = whole_number("seed", seed, 0)
-    first_record = whole_number("first_record", first_record, 0)
+    records = whole_number("records", records, 1, error=ArgumentError)
+    check_limit("records", records, defaults.MAX_RECORDS, "records", "fewer records suffice for a mean", error=ArgumentError)
+    seed = whole_number("seed", seed, 0, error=ArgumentError)
+    first_record = whole_number("first_record", first_record, 0, error=ArgumentError)
     if first_record + records > _LAST_INDEX:
-        raise CaseError("first_record", f"first_record + records must be at most 2^63 - 1, got {quote(first_record)}")
+        raise ArgumentError("first_record", f"first_record + records must be at most 2^63 - 1, got {quote(first_record)}")
     return records, seed, first_record
 
 
@@ -115,11 +115,11 @@ def check_study(case, settings, progress, cancel) -> tuple[Case, Settings]:
     case = as_case(case)
     settings = Settings() if settings is None else settings
     if not isinstance(settings, Settings):
-        raise CaseError("settings", f"must be a Settings or None, got {described(settings)}")
+        raise ArgumentError("settings", f"must be a Settings or None, got {described(settings)}")
     if progress is not None and not callable(progress):
-        raise CaseError("progress", f"must be a function progress(done, total) or None, got {described(progress)}")
+        raise ArgumentError("progress", f"must be a function progress(done, total) or None, got {described(progress)}")
     if cancel is not None and not callable(getattr(cancel, "is_set", None)):
-        raise CaseError("cancel", f"must be a threading.Event or None, got {described(cancel)}")
+        raise ArgumentError("cancel", f"must be a threading.Event or None, got {described(cancel)}")
     return case, settings
 
 

@@ -15,7 +15,7 @@ import numpy as np
 from pounding import defaults
 from pounding.case.case import Case, as_case
 from pounding.case.scaling import with_fundamental_periods
-from pounding.errors import CaseError, ConvergenceError, finite_number, quote
+from pounding.errors import ArgumentError, ConvergenceError, finite_number, quote
 from pounding.blas import single_blas_thread
 from pounding.studies.fragility import check_intensities
 from pounding.simulation.plan import MonteCarloPlan
@@ -77,11 +77,11 @@ class ForceSpectrum:
 
 def _periods_of_building_2(period1: np.ndarray, period_ratio, period2) -> np.ndarray:
     if (period_ratio is None) == (period2 is None):
-        raise CaseError("period_ratio", "give one of period_ratio (T2 / T1) and period2 (s)")
+        raise ArgumentError("period_ratio", "give one of period_ratio (T2 / T1) and period2 (s)")
     field = "period_ratio" if period2 is None else "period2"
-    value = finite_number(field, period_ratio if period2 is None else period2)
+    value = finite_number(field, period_ratio if period2 is None else period2, error=ArgumentError)
     if not value > 0:
-        raise CaseError(field, f"must be > 0, got {quote(value)}")
+        raise ArgumentError(field, f"must be > 0, got {quote(value)}")
     return period1 * value if period2 is None else np.full(period1.shape, value)
 
 

@@ -16,7 +16,7 @@ from scipy.special import log_ndtr, ndtr, ndtri
 from pounding import defaults
 from pounding.case.case import Case, as_case
 from pounding.case.scaling import PeakGroundAcceleration
-from pounding.errors import CaseError, ConvergenceError, check_limit, finite_number, quote
+from pounding.errors import ArgumentError, ConvergenceError, check_limit, finite_number, quote
 from pounding.closed_form.force_distribution import force_distribution_of
 from pounding.blas import single_blas_thread
 from pounding.simulation.plan import MonteCarloPlan
@@ -167,14 +167,14 @@ def check_intensities(values, field: str = "pga") -> np.ndarray:
     try:
         values = np.array(values, dtype=float).ravel()
     except (TypeError, ValueError):
-        raise CaseError(field, f"must be a list of numbers, got {quote(values)}") from None
+        raise ArgumentError(field, f"must be a list of numbers, got {quote(values)}") from None
     if values.size < 2:
-        raise CaseError(field, f"needs at least 2 values, got {values.size}")
-    check_limit(field, values.size, defaults.MAX_SWEEP_POINTS, "points", "give fewer values")
+        raise ArgumentError(field, f"needs at least 2 values, got {values.size}")
+    check_limit(field, values.size, defaults.MAX_SWEEP_POINTS, "points", "give fewer values", error=ArgumentError)
     if not np.all(np.isfinite(values)) or not np.all(values > 0):
-        raise CaseError(field, "every value must be a finite number > 0")
+        raise ArgumentError(field, "every value must be a finite number > 0")
     if not np.all(np.diff(values) > 0):
-        raise CaseError(field, "must increase strictly")
+        raise ArgumentError(field, "must increase strictly")
     return values
 
 
@@ -192,9 +192,9 @@ def fragility_curve(case, capacity: float, pga, monte_carlo: MonteCarloPlan | No
     monte_carlo : MonteCarloPlan, optional
         Also Monte Carlo at each PGA, at least :data:`~pounding.defaults.FRAGILITY_MIN_RECORDS` records.
     """
-    capacity = finite_number("capacity", capacity)
+    capacity = finite_number("capacity", capacity, error=ArgumentError)
     if not capacity > 0:
-        raise CaseError("capacity", f"must be > 0 N, got {quote(capacity)}")
+        raise ArgumentError("capacity", f"must be > 0 N, got {quote(capacity)}")
     pga = check_intensities(pga)
     if monte_carlo is not None:
         check_plan_records(monte_carlo, defaults.FRAGILITY_MIN_RECORDS, "for a useful interval")

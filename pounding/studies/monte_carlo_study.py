@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pounding.case.case import as_case
-from pounding.errors import CaseError, quote
+from pounding.errors import ArgumentError, quote
 from pounding.simulation.plan import MonteCarloPlan
 from pounding.simulation.result import quantile_interval, wilson_interval
 
@@ -58,10 +58,10 @@ class MonteCarloForces:
 
 
 def check_plan_records(plan: MonteCarloPlan, minimum: int, why: str) -> None:
-    """:class:`CaseError` naming ``records`` unless the plan names at least ``minimum`` records (``why`` says what
+    """:class:`ArgumentError` naming ``records`` unless the plan names at least ``minimum`` records (``why`` says what
     for)."""
     if plan.records is None or plan.records < minimum:
-        raise CaseError("records", f"must be at least {minimum} {why}, got {quote(plan.records)}")
+        raise ArgumentError("records", f"must be at least {minimum} {why}, got {quote(plan.records)}")
 
 
 def monte_carlo_forces_at(plan: MonteCarloPlan, case, adjustments: Sequence[Mapping], label: str) -> MonteCarloForces:
@@ -71,10 +71,10 @@ def monte_carlo_forces_at(plan: MonteCarloPlan, case, adjustments: Sequence[Mapp
     from pounding.case.case import Case
 
     if isinstance(case, Case):
-        raise CaseError("case", "the Monte Carlo runs on the case file: give a preset name, a path or the parsed file")
+        raise ArgumentError("case", "the Monte Carlo runs on the case file: give a preset name, a path or the parsed file")
     loaded = as_case(case)
     if loaded.recorded and plan.records > len(loaded.hazard.records):
-        raise CaseError("records", f"the case has {len(loaded.hazard.records)} recorded motions; give --records at most that")
+        raise ArgumentError("records", f"the case has {len(loaded.hazard.records)} recorded motions; give records at most that")
     from pounding.studies.sweeps import monte_carlo_forces
 
     if plan.work_dir is not None:

@@ -36,7 +36,7 @@ Layout of ``output_dir``::
 This package imports nothing heavy at load (the command line builds its parser from
 :func:`pounding.cli.sweep.add_arguments`): Dask, pandas and Bokeh are imported when used.
 
-Modules: :mod:`.spec` (the ``--vary`` specs), :mod:`.points` (the case file
+Modules: :mod:`.spec` (the specs of ``vary``), :mod:`.points` (the case file
 with the varied keys set), :mod:`.work` (what runs on Dask workers),
 :mod:`.store` (the files), :mod:`.engine` (the sweep itself, and :func:`monte_carlo_forces`, every
 record's F_max at adjusted cases for fragility curves and force spectra), :mod:`.table` (the table),

@@ -19,7 +19,7 @@ def write_chart(table, paths: Sequence[str], path: str | os.PathLike, units: str
 
     A static HTML page (Bokeh, resources inline: no server, no network),
     written atomically (:func:`pounding.output.write_atomic`; a bad target is
-    refused with a :class:`~pounding.errors.CaseError` naming ``field``).
+    refused with a :class:`~pounding.errors.ArgumentError` naming ``field``).
     Returns ``path``.
     """
     from bokeh.embed import file_html

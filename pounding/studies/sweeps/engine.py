@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from pounding import defaults
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError
 from pounding.output import check_folder, check_target
 from pounding.simulation.plan import MonteCarloPlan, as_plan
 from pounding.studies.sweeps.chart import write_chart
@@ -63,7 +63,7 @@ def _chunks(records: int, chunk_records: int) -> list[tuple[int, int]]:
 
 def _check_whole(name: str, value, minimum: int) -> None:
     if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
-        raise CaseError(name, f"must be a whole number >= {minimum}, got {value!r}")
+        raise ArgumentError(name, f"must be a whole number >= {minimum}, got {value!r}")
 
 
 class _Client:
@@ -96,9 +96,9 @@ class _Client:
             try:
                 self.client = Client(scheduler, timeout="20s")
             except (OSError, TimeoutError, ValueError) as error:
-                raise CaseError("--scheduler", f"cannot connect to {scheduler!r}: {error}") from None
+                raise ArgumentError("scheduler", f"cannot connect to {scheduler!r}: {error}") from None
         else:
-            raise CaseError("scheduler", f"give a scheduler address, a distributed.Client, {SERIAL!r} or None, got {scheduler!r}")
+            raise ArgumentError("scheduler", f"give a scheduler address, a distributed.Client, {SERIAL!r} or None, got {scheduler!r}")
 
     def close(self) -> None:
         if self.owned and self.client is not None:
@@ -239,7 +239,7 @@ def monte_carlo_forces(case, adjustments: Sequence[Mapping], plan: MonteCarloPla
     adjustment that makes the case invalid names its key.
     """
     if plan.records is None:
-        raise CaseError("records", "must be given for a study of many points")
+        raise ArgumentError("records", "must be given for a study of many points")
     _check_budget(max_chunks)
     records, seed, chunk_records, tolerance = plan.records, plan.seed, plan.chunk_records, plan.settings.tolerance
     data, name = case_data(case)
@@ -322,11 +322,12 @@ def sweep(
 
     Raises
     ------
-    CaseError
-        A bad varied path or value (field ``--vary``), a point whose case is
-        invalid (naming its field and the point), bad counts; an
+    ArgumentError
+        A bad varied path or value (field ``vary``), bad counts; an
         ``output_dir`` that is not a folder, or a table or chart target in it
         that is not a regular file (field ``output_dir``).
+    CaseError
+        A point whose case is invalid (naming its field and the point).
     OSError
         The system refused a write (read-only folder, full disk), naming the file.
     SweepInterrupted
@@ -338,7 +339,7 @@ def sweep(
     _check_budget(max_chunks)
     records, seed, chunk_records, tolerance = plan.records, plan.seed, plan.chunk_records, plan.settings.tolerance
     if table_format not in TABLE_FORMATS:
-        raise CaseError("format", f"unknown table format {table_format!r}; allowed: {', '.join(TABLE_FORMATS)}")
+        raise ArgumentError("table_format", f"unknown table format {table_format!r}; allowed: {', '.join(TABLE_FORMATS)}")
     if table_format == "parquet":
         need_parquet()
     data, name = case_data(case)

@@ -13,7 +13,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError, CaseError
 from pounding.studies.sweeps.spec import check_point_count
 
 _FILE_FORMAT = 2  # bump when the chunk files' meaning changes: old ones are then ignored (2: every record's F_max kept)
@@ -35,9 +35,9 @@ def case_data(case) -> tuple[dict, str]:
         from pounding.case.case import read_case_file  # checks the file: size, encoding, TOML
 
         return _records_from(read_case_file(case), Path(case).parent), Path(case).stem
-    raise CaseError(
+    raise ArgumentError(
         "case",
-        f"give a preset name, a TOML file or the parsed case file as a dict (--vary paths are keys of the file), "
+        f"give a preset name, a TOML file or the parsed case file as a dict (the paths of vary are keys of the file), "
         f"got {type(case).__name__}",
     )
 
@@ -62,7 +62,7 @@ def _set_path(data: dict, path: str, value: float) -> None:
         last = depth == len(parts) - 1
         if isinstance(node, list):
             if not part.isdigit() or not 1 <= int(part) <= len(node):
-                raise CaseError("--vary", f"{path!r}: {where} has {len(node)} entries, counted from 1; got {part!r}")
+                raise ArgumentError("vary", f"{path!r}: {where} has {len(node)} entries, counted from 1; got {part!r}")
             index = int(part) - 1
             if last:
                 node[index] = _like(node[index], value, path)
@@ -74,10 +74,10 @@ def _set_path(data: dict, path: str, value: float) -> None:
                 return
             if part not in node:
                 keys = ", ".join(sorted(node)) or "none"
-                raise CaseError("--vary", f"{path!r}: {where} has no {part!r}; keys there: {keys}")
+                raise ArgumentError("vary", f"{path!r}: {where} has no {part!r}; keys there: {keys}")
             node = node[part]
         else:
-            raise CaseError("--vary", f"{path!r}: {where} is a value, not a table")
+            raise ArgumentError("vary", f"{path!r}: {where} is a value, not a table")
 
 
 def _like(existing, value: float, path: str):
@@ -85,7 +85,7 @@ def _like(existing, value: float, path: str):
     if existing is None:
         return value
     if isinstance(existing, bool) or not isinstance(existing, (int, float)):
-        raise CaseError("--vary", f"{path!r} is {existing!r} in the case, not a number; only numeric keys can be varied")
+        raise ArgumentError("vary", f"{path!r} is {existing!r} in the case, not a number; only numeric keys can be varied")
     if isinstance(existing, int) and float(value).is_integer():
         return int(value)
     return value

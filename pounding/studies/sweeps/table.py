@@ -7,7 +7,7 @@ import math
 from fractions import Fraction
 from pathlib import Path
 
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError
 from pounding.output import write_atomic
 from pounding.studies.sweeps.points import Point
 from pounding.studies.sweeps.store import FIELD, Store
@@ -93,7 +93,7 @@ def need_parquet() -> None:
     try:
         import pyarrow  # noqa: F401
     except ImportError:
-        raise CaseError("format", "parquet needs pyarrow (python -m pip install pyarrow); or use csv") from None
+        raise ArgumentError("table_format", "parquet needs pyarrow (python -m pip install pyarrow); or use csv") from None
 
 
 def write_table(table, path: Path, table_format: str) -> None:
