@@ -18,12 +18,12 @@ and the thread pool in two server processes.
 
 from __future__ import annotations
 
+import asyncio
 import os
 import re
 import statistics
 import subprocess
 import sys
-import asyncio
 import threading
 from pathlib import Path
 
@@ -32,6 +32,7 @@ from playwright.async_api import async_playwright
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 from tests.browser import CHROMIUM, CHROMIUM_ARGS  # noqa: E402
+
 
 def cpu_seconds(pid: int) -> float:
     """User + system CPU time of a process so far [s] (Linux)."""

@@ -11,13 +11,12 @@ Run: python3 benchmarks/design_spectrum.py
 
 from __future__ import annotations
 
-
 import numpy as np
+from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
 from pounding.hazard.compatible_psd import compatible_spectrum
 from pounding.hazard.design_spectra import ASCE7Spectrum, Eurocode8Spectrum
 from pounding.hazard.excitation import ShinozukaSato
-from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
 TARGET = 0.050  # [s] one compatible bank
 G = 9.80665

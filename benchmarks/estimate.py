@@ -29,6 +29,7 @@ import json
 import time
 
 import numpy as np
+from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
 from pounding import load_case, simulate
 from pounding.cli.commands import main as command_line
@@ -37,7 +38,6 @@ from pounding.closed_form.impact_damping import impact_damping
 from pounding.closed_form.linearization import linearize_pair
 from pounding.closed_form.linearization.residual import residual_response
 from pounding.closed_form.pair import LinearizedPair
-from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
 CLI_CASE = "section5-T2-0.4"
 CLI_TARGET = 5e-3  # [s] median of one in-process `pounding estimate CASE --json`

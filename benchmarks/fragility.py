@@ -16,14 +16,14 @@ from __future__ import annotations
 import tempfile
 
 import numpy as np
+from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
 from pounding import Settings, estimate, load_case, simulate
 from pounding.case.scaling import PeakGroundAcceleration
+from pounding.simulation.plan import MonteCarloPlan
 from pounding.studies.force_spectrum import force_spectrum
 from pounding.studies.fragility import fragility_curve
-from pounding.simulation.plan import MonteCarloPlan
 from pounding.units import STANDARD_GRAVITY
-from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
 CASE = "section5-T2-0.4"
 

@@ -18,12 +18,12 @@ from __future__ import annotations
 import tempfile
 from pathlib import Path
 
+from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
 from pounding import estimate, simulate
-from pounding.hazard.accelerograms import Accelerogram, write_at2
 from pounding.case.case import case_from_dict
+from pounding.hazard.accelerograms import Accelerogram, write_at2
 from pounding.hazard.excitation import ground_accelerations
-from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
 BUILDINGS = [
     {"damping_ratio": 0.05, "storeys": [{"period": 1.0, "mass": 4.0e4, "hysteresis": {"yield_drift": 0.02, "post_yield_ratio": 0.05}}]},

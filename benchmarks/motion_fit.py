@@ -16,11 +16,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
 from pounding.hazard.accelerograms import Accelerogram
 from pounding.hazard.excitation import Excitation, KanaiTajimi, ground_accelerations
 from pounding.hazard.motion_fit import fit_excitation
-from timing import median_seconds  # noqa: E402 (this folder is on the path)
 
 TARGET = 0.200  # [s] one fit to 20 records of 20 s at 0.005 s
 CUTOFF = 2.0 * math.pi * 25.0  # [rad/s]

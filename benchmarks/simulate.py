@@ -28,8 +28,8 @@ sys.path.insert(0, str(ROOT))
 import numpy as np  # noqa: E402
 
 from pounding import Settings, integrate, load_case, simulate  # noqa: E402
-from pounding.simulation.monte_carlo import design_gap  # noqa: E402
 from pounding.hazard.excitation import ground_accelerations  # noqa: E402
+from pounding.simulation.monte_carlo import design_gap  # noqa: E402
 from tests.reference import solve_reference  # noqa: E402
 
 CASE = "section5-T2-0.4"

@@ -54,8 +54,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from pounding.presets import preset_text  # noqa: E402
 from pounding import defaults  # noqa: E402
+from pounding.presets import preset_text  # noqa: E402
 from pounding.studies.sweeps import chunk_sums, sweep  # noqa: E402
 
 CASE = "section5-T2-0.4"

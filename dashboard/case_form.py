@@ -8,13 +8,12 @@ from __future__ import annotations
 
 import math
 
+from dashboard.inputs import DESIGN_CODE_KEYS, BuildingInputs, CaseInputs
 from pounding.case.case import Case
 from pounding.display_units import Display, display
 from pounding.errors import CaseError
 from pounding.hazard.excitation import CloughPenzien
 from pounding.units import STANDARD_GRAVITY
-
-from dashboard.inputs import DESIGN_CODE_KEYS, BuildingInputs, CaseInputs
 
 __all__ = ["case_file_of_inputs", "chain_stiffness", "inputs_of_case"]
 

@@ -11,9 +11,8 @@ from functools import cache
 
 import param
 
-from pounding.simulation.monte_carlo import Cancelled
-
 from dashboard.messages import message
+from pounding.simulation.monte_carlo import Cancelled
 
 __all__ = ["StudyJob"]
 

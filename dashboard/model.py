@@ -24,6 +24,12 @@ from pathlib import Path
 
 import param
 
+from dashboard.case_form import case_file_of_inputs, chain_stiffness, inputs_of_case
+from dashboard.inputs import BuildingInputs, CaseInputs, input_names
+from dashboard.messages import message
+from dashboard.runner import Latest
+from dashboard.studies import Studies
+from dashboard.visibility import applies
 from pounding import defaults
 from pounding.case.case import case_from_dict, load_case
 from pounding.closed_form.estimator import estimate
@@ -33,13 +39,6 @@ from pounding.errors import CaseError, ConvergenceError, InputError, SimulationE
 from pounding.presets import preset_names, preset_text
 from pounding.report import compute_snapshot
 from pounding.units import UNIT_SYSTEMS
-
-from dashboard.case_form import case_file_of_inputs, chain_stiffness, inputs_of_case
-from dashboard.inputs import BuildingInputs, CaseInputs, input_names
-from dashboard.messages import message
-from dashboard.runner import Latest
-from dashboard.studies import Studies
-from dashboard.visibility import applies
 
 __all__ = ["PoundingModel"]
 

@@ -11,11 +11,10 @@ from functools import partial
 
 import param
 
+from dashboard.jobs import StudyJob
 from pounding import defaults, simulate
 from pounding.report import DEFAULT_SEED, MonteCarloPoint
 from pounding.simulation.monte_carlo import DesignGap, design_gap
-
-from dashboard.jobs import StudyJob
 
 __all__ = ["Studies"]
 

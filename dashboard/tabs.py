@@ -9,12 +9,11 @@ import dataclasses
 import numpy as np
 import panel as pn
 
+from dashboard.messages import message
+from dashboard.runner import Latest
 from pounding.display_units import display
 from pounding.errors import ConvergenceError, InputError, SimulationError
 from pounding.units import STANDARD_GRAVITY
-
-from dashboard.messages import message
-from dashboard.runner import Latest
 
 __all__ = ["FRAGILITY_POINTS", "LazyTabs"]
 

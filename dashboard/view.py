@@ -19,15 +19,14 @@ from pathlib import Path
 import panel as pn
 import param
 
-from pounding.display_units import display
-from pounding.report import Figures, case_provenance, write_report
-
 from dashboard.headline import HEADLINE_CSS, headline_html
 from dashboard.jobs import StudyJob
 from dashboard.model import PoundingModel
 from dashboard.runner import shared_pool
 from dashboard.tabs import LazyTabs
 from dashboard.visibility import visible
+from pounding.display_units import display
+from pounding.report import Figures, case_provenance, write_report
 
 __all__ = ["PoundingDashboard"]
 

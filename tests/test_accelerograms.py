@@ -6,16 +6,16 @@ import numpy as np
 import pytest
 
 from pounding import defaults
+from pounding.errors import ArgumentError, CaseError
 from pounding.hazard.accelerograms import (
-    G,
     Accelerogram,
+    G,
     expand_records,
     read_accelerogram,
     read_records,
     write_at2,
     write_csv,
 )
-from pounding.errors import ArgumentError, CaseError
 
 HEADER = "PEER NGA STRONG MOTION DATABASE RECORD\nIMPERIAL VALLEY 10/15/79, EL CENTRO ARRAY #9, 180\n" \
          "ACCELERATION TIME SERIES IN UNITS OF G\n"

@@ -2,6 +2,7 @@
 
 import math
 import textwrap
+import tomllib
 
 import numpy as np
 import pytest
@@ -9,8 +10,6 @@ import pytest
 from pounding import ArgumentError, CaseError, load_case, preset_names, simulate
 from pounding.case.case import case_from_dict
 from pounding.units import KGF_CM_S, STANDARD_GRAVITY
-
-import tomllib
 
 # The issue's schema example, in the paper's units.
 PAPER_UNITS = textwrap.dedent("""

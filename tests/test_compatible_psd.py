@@ -7,9 +7,9 @@ import numpy as np
 import pyrotd
 import pytest
 
+from pounding.errors import ArgumentError
 from pounding.hazard.compatible_psd import compatible_spectrum, initial_psd, random_vibration_spectrum
 from pounding.hazard.design_spectra import ASCE7Spectrum, Eurocode8Spectrum, TabulatedSpectrum
-from pounding.errors import ArgumentError
 from pounding.hazard.excitation import Excitation, ShinozukaSato, ground_accelerations
 
 G = 9.80665

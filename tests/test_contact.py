@@ -176,8 +176,8 @@ def test_no_opposing_force_is_the_free_impact(model, restitution):
 
 
 def test_opposing_force_is_validated():
-    from pounding.mechanics.contact import impact_peak_force
     from pounding.errors import ArgumentError
+    from pounding.mechanics.contact import impact_peak_force
 
     with pytest.raises(ArgumentError, match="opposing_force"):
         impact_peak_force(Contact(gap=0.0, stiffness=BETA), 0.3, REDUCED_MASS, -1.0)

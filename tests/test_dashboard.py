@@ -10,12 +10,12 @@ import numpy as np
 import pytest
 
 from pounding import estimate, load_case, simulate
-from pounding.hazard.accelerograms import Accelerogram, write_at2
 from pounding.case.case import case_from_dict
 from pounding.display_units import display
+from pounding.hazard.accelerograms import Accelerogram, write_at2
 from pounding.hazard.excitation import ground_accelerations
-from pounding.report import MonteCarloPoint, monte_carlo_check
 from pounding.presets import preset_text
+from pounding.report import MonteCarloPoint, monte_carlo_check
 from tests.browser import CANVAS_COUNT_JS, LOAD_TIMEOUT, UPDATE_TIMEOUT
 
 pytestmark = pytest.mark.browser

@@ -10,19 +10,18 @@ import tomllib
 import numpy as np
 import pytest
 
-from pounding import estimate, load_case
-from pounding.hazard.accelerograms import Accelerogram, write_at2
-from pounding.case.case import case_from_dict
-from pounding.hazard.excitation import ground_accelerations
-from pounding.report import monte_carlo_check
-from pounding.presets import preset_names, preset_text
-from pounding.simulation.monte_carlo import Cancelled, design_gap
-from pounding.units import STANDARD_GRAVITY
-
 from dashboard.case_form import chain_stiffness
 from dashboard.headline import headline_html
 from dashboard.model import PoundingModel
 from dashboard.runner import Latest
+from pounding import estimate, load_case
+from pounding.case.case import case_from_dict
+from pounding.hazard.accelerograms import Accelerogram, write_at2
+from pounding.hazard.excitation import ground_accelerations
+from pounding.presets import preset_names, preset_text
+from pounding.report import monte_carlo_check
+from pounding.simulation.monte_carlo import Cancelled, design_gap
+from pounding.units import STANDARD_GRAVITY
 
 DEFAULT = "section5-T2-0.4"
 
@@ -359,9 +358,8 @@ def test_a_jobs_cancel_stops_it():
 
 def test_a_jobs_error_shows_in_the_pages_terms():
     """A failure is kept as one sentence naming the input as the page does: no command-line option in it."""
-    from pounding.errors import CaseError
-
     from dashboard.jobs import StudyJob
+    from pounding.errors import CaseError
 
     def study(progress, cancel):
         raise CaseError("--records", "the case has 3 recorded motions; records 0..49 are not all among them")

@@ -9,8 +9,8 @@ import pytest
 from pounding import CaseError, estimate
 from pounding.case.case import case_from_dict
 from pounding.cli.commands import main
-from pounding.simulation.ground_motion import ground_motion_batches
 from pounding.report import write_report
+from pounding.simulation.ground_motion import ground_motion_batches
 from pounding.units import STANDARD_GRAVITY
 
 BUILDINGS = [

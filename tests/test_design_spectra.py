@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from pounding.hazard.design_spectra import ASCE7Spectrum, Eurocode8Spectrum, TabulatedSpectrum
 from pounding.errors import ArgumentError, CaseError
+from pounding.hazard.design_spectra import ASCE7Spectrum, Eurocode8Spectrum, TabulatedSpectrum
 
 G = 9.80665
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 import pytest
 
 from pounding.display_units import DISPLAY_UNITS, display
-from pounding.errors import CaseError
+from pounding.errors import ArgumentError
 from pounding.units import KGF_CM_S, SI, STANDARD_GRAVITY
 
 DIMENSIONS = [{"length": 1}, {"force": 1}, {"mass": 1}, {"force": 1, "length": -1.5}, {"length": 2, "time": -3},
@@ -56,5 +56,5 @@ def test_labels_name_the_units_shown():
 
 
 def test_an_unknown_unit_system_is_named():
-    with pytest.raises(CaseError, match="units"):
+    with pytest.raises(ArgumentError, match="units"):
         display("imperial")

@@ -87,8 +87,8 @@ def test_the_readme_hazard_forms_load(tmp_path):
     put into the Section 5 case as written, load (the recorded motions from two files written here)."""
     import tomllib
 
-    from pounding.hazard.accelerograms import Accelerogram, write_at2, write_csv
     from pounding.case.case import load_case
+    from pounding.hazard.accelerograms import Accelerogram, write_at2, write_csv
     from pounding.hazard.excitation import ground_accelerations
     from pounding.presets import preset_text
 

@@ -3,19 +3,19 @@ the engineer's forms of a case are the same case as the raw ones."""
 
 import dataclasses
 import math
+import tomllib
 
 import numpy as np
 import pytest
 from scipy.integrate import quad
-import tomllib
 
 from pounding import CaseError, estimate, simulate
 from pounding.case.case import case_from_dict
-from pounding.hazard.filter_bank import FilterBank
 from pounding.closed_form.pair import LinearizedPair
-from pounding.presets import preset_text
 from pounding.closed_form.response import response_frequency
+from pounding.hazard.filter_bank import FilterBank
 from pounding.mechanics.structures import BoucWen
+from pounding.presets import preset_text
 
 PRESET = "section5-T2-0.4"  # kgf-cm-s, beta = 2, gamma = -1 [1/cm], alpha = 0.05
 

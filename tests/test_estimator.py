@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 from pounding import ArgumentError, CaseError, load_case, simulate_record
-from pounding.random_vibration.crossing_kernels import approach_intensity
 from pounding.closed_form.estimator import estimate, force_versus_gap
 from pounding.closed_form.linearization import linearize_pair
 from pounding.closed_form.pair import LinearizedPair
+from pounding.random_vibration.crossing_kernels import approach_intensity
 from pounding.random_vibration.peaks import davenport_peak_factor
 from tests.free_count import free_force
 

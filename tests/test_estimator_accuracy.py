@@ -11,7 +11,13 @@ import pytest
 
 from pounding import load_case, simulate
 from pounding.closed_form.estimator import estimate
-from pounding.closed_form.regimes import MODERATE_GAP, MOVING_TOGETHER, NARROW_BAND_LIMIT, RESIDUAL_SHARE_LIMIT, accuracy_data
+from pounding.closed_form.regimes import (
+    MODERATE_GAP,
+    MOVING_TOGETHER,
+    NARROW_BAND_LIMIT,
+    RESIDUAL_SHARE_LIMIT,
+    accuracy_data,
+)
 from pounding.simulation.monte_carlo import design_gap
 from pounding.studies.paper_tables import accuracy, mdof_case, random_case, varied_case
 from tests.free_count import free_force

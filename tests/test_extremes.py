@@ -16,11 +16,11 @@ import pytest
 
 from pounding import load_case
 from pounding.cli.commands import main
-from pounding.errors import CaseError, ConvergenceError
 from pounding.closed_form.estimator import estimate, force_versus_gap
 from pounding.closed_form.pair import LinearizedPair
-from pounding.presets import preset_names, preset_text
 from pounding.closed_form.regimes import CUTOFF_SHARE_LIMIT
+from pounding.errors import CaseError, ConvergenceError
+from pounding.presets import preset_names, preset_text
 
 PRESET = "section5-T2-0.4"
 

@@ -11,8 +11,8 @@ import pytest
 from pounding import load_case, simulate
 from pounding.case.scaling import with_fundamental_periods
 from pounding.cli.commands import main
-from pounding.studies.force_spectrum import force_spectrum
 from pounding.simulation.plan import MonteCarloPlan
+from pounding.studies.force_spectrum import force_spectrum
 from pounding.studies.paper_tables import mdof_case
 
 SECTION5 = "section5-T2-0.4"

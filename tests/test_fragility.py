@@ -10,15 +10,15 @@ import numpy as np
 import pytest
 
 from pounding import load_case, simulate
-from pounding.hazard.accelerograms import Accelerogram, write_at2
 from pounding.case.scaling import PeakGroundAcceleration
 from pounding.cli.commands import main
+from pounding.hazard.accelerograms import Accelerogram, write_at2
 from pounding.hazard.excitation import ground_accelerations
-from pounding.studies.fragility import fit_lognormal, fragility_curve
-from pounding.simulation.plan import MonteCarloPlan
 from pounding.hazard.motion_fit import fit_excitation
-from pounding.random_vibration.peak_factors import expected_peak_ground_acceleration
 from pounding.presets import preset_text
+from pounding.random_vibration.peak_factors import expected_peak_ground_acceleration
+from pounding.simulation.plan import MonteCarloPlan
+from pounding.studies.fragility import fit_lognormal, fragility_curve
 from pounding.units import STANDARD_GRAVITY as G
 
 SECTION5 = "section5-T2-0.4"

@@ -27,13 +27,13 @@ from pounding import (
     Settings,
     ShinozukaSato,
     Storey,
+    defaults,
     design_gap,
     integrate,
     load_case,
     simulate,
     simulate_record,
 )
-from pounding import defaults
 from pounding.case.case import as_case, case_from_dict
 from pounding.cli.commands import main
 from pounding.errors import check_probability

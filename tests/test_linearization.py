@@ -10,9 +10,6 @@ from scipy.linalg import solve_continuous_lyapunov
 from scipy.special import erf
 
 import pounding
-from pounding.errors import ConvergenceError
-from pounding.hazard.filter_bank import FilterBank
-from pounding.hazard.excitation import CloughPenzien, KanaiTajimi
 from pounding.closed_form.linearization import (
     LinearizedBuilding,
     building_state_space,
@@ -24,6 +21,9 @@ from pounding.closed_form.linearization import (
     state_space,
     wen_expectations,
 )
+from pounding.errors import ConvergenceError
+from pounding.hazard.excitation import CloughPenzien, KanaiTajimi
+from pounding.hazard.filter_bank import FilterBank
 from pounding.mechanics.structures import BoucWen, Building, Storey
 
 

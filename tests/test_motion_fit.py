@@ -9,8 +9,8 @@ import math
 import numpy as np
 import pytest
 
-from pounding.hazard.accelerograms import G, Accelerogram
 from pounding.errors import ArgumentError, CaseError
+from pounding.hazard.accelerograms import Accelerogram, G
 from pounding.hazard.excitation import CloughPenzien, Excitation, KanaiTajimi, ShinozukaSato, ground_accelerations
 from pounding.hazard.motion_fit import TAPER, arias_intensity, fit_excitation, significant_duration
 

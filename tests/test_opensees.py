@@ -19,10 +19,10 @@ import numpy as np
 import pytest
 
 from pounding import load_case, simulate
-from pounding.hazard.accelerograms import Accelerogram, write_at2
 from pounding.cli.commands import main
-from pounding.hazard.excitation import ground_accelerations
 from pounding.export.opensees import export_opensees
+from pounding.hazard.accelerograms import Accelerogram, write_at2
+from pounding.hazard.excitation import ground_accelerations
 from pounding.presets import preset_text
 from pounding.units import STANDARD_GRAVITY
 

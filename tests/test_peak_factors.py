@@ -9,10 +9,10 @@ from pounding import load_case
 from pounding.errors import ArgumentError
 from pounding.hazard.excitation import CloughPenzien, Excitation, ShinozukaSato, ground_accelerations
 from pounding.random_vibration.peak_factors import (
-    vanmarcke_expected_peak,
     expected_peak_ground_acceleration,
     intensity_for_peak_ground_acceleration,
     rms_acceleration,
+    vanmarcke_expected_peak,
 )
 from pounding.random_vibration.peaks import davenport_peak_factor
 

@@ -7,17 +7,17 @@ import pytest
 from scipy.integrate import quad, solve_ivp
 
 import pounding
-from pounding.errors import ArgumentError, CaseError
-from pounding.hazard.excitation import ShinozukaSato
 from pounding.closed_form.covariance_history import time_varying_covariance
 from pounding.closed_form.pair import LinearizedPair
+from pounding.errors import ArgumentError, CaseError
+from pounding.hazard.excitation import ShinozukaSato
 from pounding.random_vibration.peaks import (
     EULER_GAMMA,
+    davenport_expected_peak,
     davenport_peak_factor,
     envelope_variance,
     equivalent_stationary,
     expected_absolute_peak,
-    davenport_expected_peak,
     michaelov_variance,
 )
 
@@ -154,8 +154,8 @@ def test_michaelov_variance_matches_an_oscillator_under_modulated_white_noise(pe
     """Against the exact variance of a linear oscillator under Shinozuka-Sato
     modulated white noise (the setting of Eq. 26): within 1 % of the peak; the
     printed C^2 would be off by a factor C^-4 (about 250)."""
-    from pounding.closed_form.linearization import lyapunov_covariance
     from pounding.closed_form.covariance_history import _bedrock
+    from pounding.closed_form.linearization import lyapunov_covariance
 
     envelope = ShinozukaSato()
     omega0, xi, S0 = 2.0 * math.pi / period, 0.05, 1.0
@@ -242,8 +242,8 @@ def test_switched_on_covariance_matches_direct_integration(preset):
     """A stationary motion switched on at t = 0 on buildings at rest (the
     filter already stationary): the closed form by eigenvectors, and the
     stepped one it falls back to, against solve_ivp of dP/dt = A P + P A^T + Q."""
-    from pounding.closed_form.linearization.lyapunov import lyapunov_covariance
     from pounding.closed_form.covariance_history import _stepped
+    from pounding.closed_form.linearization.lyapunov import lyapunov_covariance
 
     _, model = _stationary_pair(preset)
     A, Q, n, f = model.matrix, model.noise_covariance, model.size, model.filter_states

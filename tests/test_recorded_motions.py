@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 
 from pounding import CaseError, load_case, simulate
-from pounding.hazard.accelerograms import Accelerogram, read_accelerogram, write_at2
 from pounding.cli.commands import main
+from pounding.hazard.accelerograms import Accelerogram, read_accelerogram, write_at2
 from pounding.hazard.excitation import ground_accelerations
-from pounding.random_vibration.peak_factors import expected_peak_ground_acceleration
 from pounding.presets import preset_text
+from pounding.random_vibration.peak_factors import expected_peak_ground_acceleration
 from pounding.units import STANDARD_GRAVITY
 
 PRESET = "section5-T2-0.4"

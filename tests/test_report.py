@@ -223,8 +223,9 @@ def test_the_inputs_table_has_every_storey_and_the_excitation_in_its_form():
     assert ("storey 2: yield drift", "1", "cm") in rows and ("gap", "2", "cm") in rows
     assert ("G0 (intensity)", "65.03", "cm^2/s^3") in rows
     assert table(two)["envelope"] == ("Shinozuka-Sato, B1 = 0.085, B2 = 0.17", "1/s")
-    from pounding.case.case import case_from_dict
     import tomllib
+
+    from pounding.case.case import case_from_dict
     from pounding.presets import preset_text
 
     data = tomllib.loads(preset_text(DEFAULT_PRESET))

@@ -12,8 +12,8 @@ import pytest
 
 from pounding import ArgumentError, load_case
 from pounding.case.case import case_from_dict
-from pounding.cli.commands import main
 from pounding.case.engineering import ground_motion_terms
+from pounding.cli.commands import main
 from pounding.presets import preset_names, preset_text
 from pounding.report import CaseChange, case_changes, case_provenance, compute_snapshot, write_report
 from pounding.report.case_keys import DEFAULTS, key_label

@@ -8,10 +8,10 @@ import pytest
 from scipy.integrate import quad
 
 import pounding
-from pounding.hazard.excitation import CloughPenzien
 from pounding.closed_form.linearization import linearize_pair
 from pounding.closed_form.pair import LinearizedPair
 from pounding.closed_form.response import ContactResponse, frequency_response, response_frequency
+from pounding.hazard.excitation import CloughPenzien
 
 DERIVED = (
     "sigma_displacement",

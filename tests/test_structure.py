@@ -7,6 +7,7 @@ go stale; the fast path of ``pounding estimate`` imports no plotting or dashboar
 from __future__ import annotations
 
 import ast
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -252,3 +253,33 @@ def test_the_flag_scan_finds_a_flag_named_by_the_library(tmp_path):
                        '    if records < 1:\n        raise ArgumentError("--records", "must be >= 1")\n'
                        '    return f"--seed {seed}", "give --records at most that", "-- a dash", "---"\n')
     assert _flags(planted) == ["planted.py:6: '--records'", "planted.py:7: '--seed '"]
+
+
+_MEASURED_RANGE = re.compile(r"[-+]\d[\d,.]* ?% to [-+]?\d[\d,.]* ?%")
+"""A measured range of errors written out (``-19 % to +13 %``): such figures belong in pounding/data/accuracy.json."""
+
+
+def _measured_ranges(path: Path) -> list[str]:
+    """The string constants and f-string parts of ``path`` (docstrings aside) that write out a measured range."""
+    tree = ast.parse(path.read_text())
+    docstrings = {id(node.body[0].value) for node in ast.walk(tree)
+                  if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef))
+                  and node.body and isinstance(node.body[0], ast.Expr) and isinstance(node.body[0].value, ast.Constant)}
+    for body in [tree.body] + [n.body for n in ast.walk(tree) if isinstance(n, ast.ClassDef)]:
+        docstrings |= {id(b.value) for a, b in zip(body, body[1:]) if isinstance(a, (ast.Assign, ast.AnnAssign))
+                       and isinstance(b, ast.Expr) and isinstance(b.value, ast.Constant)}  # attribute docstrings
+    return [node.value for node in ast.walk(tree) if isinstance(node, ast.Constant) and isinstance(node.value, str)
+            and id(node) not in docstrings and _MEASURED_RANGE.search(node.value)]
+
+
+def test_measured_accuracy_comes_from_the_data_file_only():
+    """What users read of the measured accuracy is read from pounding/data/accuracy.json, never typed into code."""
+    found = {name: ranges for name, path in _modules().items() if (ranges := _measured_ranges(path))}
+    assert found == {}
+
+
+def test_the_accuracy_scan_finds_a_typed_range(tmp_path):
+    planted = tmp_path / "planted.py"
+    planted.write_text('"""Docstrings may cite -19 % to +13 %."""\nWARNING = "it was -19 % to +13 % off"\n'
+                       'def f(x):\n    return f"measured +34 % to +630 % off, {x}"\n')
+    assert _measured_ranges(planted) == ["it was -19 % to +13 % off", "measured +34 % to +630 % off, "]

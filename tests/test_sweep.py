@@ -20,11 +20,11 @@ import pytest
 
 from pounding import ArgumentError, CaseError, InputError
 from pounding.case.case import case_from_dict
+from pounding.cli.parser import error_line
+from pounding.cli.sweep import add_arguments, run
 from pounding.closed_form.estimator import estimate
 from pounding.presets import preset_text
 from pounding.simulation.monte_carlo import Settings, simulate
-from pounding.cli.parser import error_line
-from pounding.cli.sweep import add_arguments, run
 from pounding.studies.sweeps import SweepInterrupted, parse_values, parse_vary, sweep
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -35,7 +35,14 @@ from pounding.closed_form.pair import LinearizedPair
 from pounding.studies.paper_tables import accuracy_cases, random_cases
 
 from .out_of_sample import GAP_SEED, LABELS, measured, required_gaps
-from .record_synthesis import CLOUGH_PENZIEN_RECORDS, DESIGN_RECORDS, DESIGN_SEED, clough_penzien_cases, design_gap_cases, design_gap_fraction
+from .record_synthesis import (
+    CLOUGH_PENZIEN_RECORDS,
+    DESIGN_RECORDS,
+    DESIGN_SEED,
+    clough_penzien_cases,
+    design_gap_cases,
+    design_gap_fraction,
+)
 from .sizes import first
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -39,9 +39,9 @@ from scipy.linalg import expm
 from scipy.special import erfc
 
 from pounding import load_case, simulate
-from pounding.hazard.excitation import ground_accelerations
 from pounding.closed_form.pair import LinearizedPair
 from pounding.closed_form.regimes import REGIMES
+from pounding.hazard.excitation import ground_accelerations
 from pounding.studies.paper_tables import accuracy_cases, random_cases, varied_case
 
 from .error_decomposition import ONE_SIDED, contact_motion, rice_expected_power, upcrossing_speeds, vanmarcke_clumps

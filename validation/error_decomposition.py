@@ -54,9 +54,9 @@ import math
 import numpy as np
 
 from pounding import integrate, simulate
-from pounding.mechanics.contact import impact_peak_force
-from pounding.hazard.excitation import ground_accelerations
 from pounding.closed_form.gap_aware import expected_maximum
+from pounding.hazard.excitation import ground_accelerations
+from pounding.mechanics.contact import impact_peak_force
 from pounding.studies.paper_tables import accuracy_cases
 
 from .free_count import free_estimate

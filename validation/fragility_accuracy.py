@@ -13,9 +13,9 @@ import argparse
 
 import numpy as np
 
+from pounding.simulation.plan import MonteCarloPlan
 from pounding.studies.force_spectrum import force_spectrum
 from pounding.studies.fragility import fragility_curve
-from pounding.simulation.plan import MonteCarloPlan
 from pounding.units import STANDARD_GRAVITY
 
 RECORDS, SEED = 100, 5

@@ -50,9 +50,9 @@ from scipy.special import ndtr
 
 from pounding import integrate, load_case
 from pounding.closed_form.estimator import estimate
-from pounding.hazard.excitation import ground_accelerations
 from pounding.closed_form.linearization.residual import residual_response, residual_storeys
 from pounding.closed_form.pair import LinearizedPair
+from pounding.hazard.excitation import ground_accelerations
 from pounding.simulation.monte_carlo import design_gap
 from pounding.studies.paper_tables import RANDOM_FAMILIES, accuracy_cases, random_cases
 from validation.residual_sampled import sampled_residual_paths

@@ -6,9 +6,9 @@ from __future__ import annotations
 import numpy as np
 from scipy.linalg import expm
 
-from pounding.mechanics.integrator import bouc_wen_rates
 from pounding.closed_form.linearization import LinearizedBuilding, StateSpace
 from pounding.closed_form.linearization.residual import residual_storeys
+from pounding.mechanics.integrator import bouc_wen_rates
 
 __all__ = ["residual_response_sampled", "sampled_residual_paths"]
 

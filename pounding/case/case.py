@@ -19,12 +19,12 @@ from pathlib import Path
 from pounding import defaults
 from pounding.case.excitation import read_excitation
 from pounding.case.fields import build, check_keys, number, quantity, to_si
-from pounding.mechanics.contact import Contact, contact_law
 from pounding.errors import ArgumentError, CaseError, check_limit, described, quote
 from pounding.hazard.excitation import Excitation
 from pounding.hazard.sources import DesignSpectrum, RecordedMotions
-from pounding.presets import preset_description, preset_names, preset_text
+from pounding.mechanics.contact import Contact, contact_law
 from pounding.mechanics.structures import BoucWen, Building, Storey, check_storey_count
+from pounding.presets import preset_description, preset_names, preset_text
 from pounding.units import SI, UNIT_SYSTEMS, UnitSystem, unit_system
 
 __all__ = ["DEFAULT_PRESET", "Case", "as_case", "case_from_dict", "load_case", "preset_description", "preset_names", "read_case_file"]

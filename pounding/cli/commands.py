@@ -51,8 +51,8 @@ def _capacity(args) -> float | None:
 
 def _simulate(args) -> int:
     from pounding.case.case import load_case
-    from pounding.errors import ConvergenceError, check_probability
     from pounding.closed_form.estimator import estimate
+    from pounding.errors import ConvergenceError, check_probability
     from pounding.simulation.monte_carlo import MonteCarloPlan, Settings, design_gap, simulate
 
     if args.design_gap is not None:
@@ -153,8 +153,8 @@ def _print_design_gap(case, result, closed_form, failure, args) -> int:
 
 def _estimate(args) -> int:
     from pounding.case.case import load_case
-    from pounding.cli.hazard import engineering_lines
     from pounding.case.engineering import engineering_terms
+    from pounding.cli.hazard import engineering_lines
     from pounding.closed_form.estimator import estimate
 
     case = load_case(args.case)

@@ -9,8 +9,8 @@ import argparse
 import json
 
 from pounding import defaults
-from pounding.cli.progress import progress_bar
 from pounding.cli.arguments import bounded_number, increasing_values, record_count, whole_number_type
+from pounding.cli.progress import progress_bar
 
 __all__ = ["add_fragility", "add_spectrum", "run_fragility", "run_spectrum"]
 

@@ -62,11 +62,11 @@ def engineering_lines(terms: dict, force_text=None) -> list[str]:
 def records_command(args) -> int:
     """``pounding records``: write the records ``simulate`` integrates, one file per record."""
     from pounding import defaults
-    from pounding.hazard.accelerograms import Accelerogram, write_at2, write_csv
     from pounding.case.case import load_case
     from pounding.errors import ArgumentError
-    from pounding.simulation.ground_motion import check_suite_range, ground_motion_batches, suite_size
+    from pounding.hazard.accelerograms import Accelerogram, write_at2, write_csv
     from pounding.output import check_folder
+    from pounding.simulation.ground_motion import check_suite_range, ground_motion_batches, suite_size
     from pounding.simulation.system import check_records
 
     case = load_case(args.case)

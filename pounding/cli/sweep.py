@@ -8,8 +8,8 @@ import math
 import sys
 
 from pounding import defaults
-from pounding.cli.progress import progress_bar
 from pounding.cli.arguments import record_count, whole_number_type
+from pounding.cli.progress import progress_bar
 from pounding.studies.sweeps.engine import SERIAL, TABLE_FORMATS, sweep
 from pounding.studies.sweeps.spec import normalized_vary
 

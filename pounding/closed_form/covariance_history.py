@@ -12,8 +12,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.linalg import expm
 
-from pounding.errors import ArgumentError
 from pounding.closed_form.linearization import StateSpace, lyapunov_covariance
+from pounding.errors import ArgumentError
 
 __all__ = ["time_varying_covariance"]
 

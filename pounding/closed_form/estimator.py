@@ -19,10 +19,8 @@ import numpy as np
 
 from pounding import defaults
 from pounding.case.case import Case, as_case
-from pounding.mechanics.contact import peak_force_ratio
 from pounding.case.engineering import engineering_terms
 from pounding.closed_form.force_distribution import ForceDistribution, force_distribution
-from pounding.errors import ArgumentError, check_limit, check_probability
 from pounding.closed_form.gap_aware import (
     Crossings,
     expected_force_maximum,
@@ -35,6 +33,8 @@ from pounding.closed_form.paper_method import PaperEstimate, check_michaelov_n1,
 from pounding.closed_form.regimes import assess, extreme_warnings
 from pounding.closed_form.response import ContactResponse
 from pounding.closed_form.separation import separation_rules
+from pounding.errors import ArgumentError, check_limit, check_probability
+from pounding.mechanics.contact import peak_force_ratio
 
 __all__ = ["Estimate", "GapCurve", "estimate", "force_versus_gap", "gap_curve"]
 

@@ -20,11 +20,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pounding.mechanics.contact import impact_peak_force
-from pounding.random_vibration.crossing_kernels import U_MAX
-from pounding.errors import ArgumentError, CaseError, check_probability, finite_number
 from pounding.closed_form.gap_aware import Crossings, opposing_forces
 from pounding.closed_form.pair import LinearizedPair
+from pounding.errors import ArgumentError, CaseError, check_probability, finite_number
+from pounding.mechanics.contact import impact_peak_force
+from pounding.random_vibration.crossing_kernels import U_MAX
 
 __all__ = ["ForceDistribution", "force_distribution", "force_distribution_of"]
 

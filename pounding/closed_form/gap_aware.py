@@ -31,10 +31,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pounding.closed_form.impact_damping import DampedMotion, ImpactDamping
+from pounding.errors import ConvergenceError
 from pounding.mechanics.contact import Contact, impact_peak_force
 from pounding.random_vibration.crossing_kernels import U_MAX, approach_intensity, merged_instants, required_gap
-from pounding.errors import ConvergenceError
-from pounding.closed_form.impact_damping import DampedMotion, ImpactDamping
 from pounding.random_vibration.peak_factors import VANMARCKE_CLUMP_EXPONENT
 from pounding.random_vibration.peaks import VANMARCKE_DOUBLE_BARRIER
 

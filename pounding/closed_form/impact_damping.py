@@ -45,13 +45,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pounding.closed_form.response import spectral_grid, spectral_weights
+from pounding.errors import ConvergenceError
 from pounding.random_vibration.crossing_kernels import (
     jump_memory,
     solve_dashpots,
     with_dashpot,
 )
-from pounding.errors import ConvergenceError
-from pounding.closed_form.response import spectral_grid, spectral_weights
 
 __all__ = ["DampedMotion", "ImpactDamping", "impact_damping", "jump_modes"]
 

@@ -16,8 +16,6 @@ import numpy as np
 from pounding import defaults
 from pounding.case.case import Case
 from pounding.closed_form.covariance_history import time_varying_covariance
-from pounding.random_vibration.crossing_kernels import vanmarcke_bandwidth
-from pounding.errors import ArgumentError, CaseError, ConvergenceError
 from pounding.closed_form.impact_damping import ImpactDamping, impact_damping, jump_modes
 from pounding.closed_form.linearization import (
     LinearizedBuilding,
@@ -39,6 +37,8 @@ from pounding.closed_form.response import (
     spectral_moments,
     trapezoid_weights,
 )
+from pounding.errors import ArgumentError, CaseError, ConvergenceError
+from pounding.random_vibration.crossing_kernels import vanmarcke_bandwidth
 
 __all__ = ["CUTOFF_NEGLIGIBLE", "HISTORY_STEP", "RUNAWAY_PEAK_FACTOR", "LinearizedPair"]
 

@@ -12,8 +12,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from pounding import defaults
-from pounding.mechanics.contact import undamped_peak_force
 from pounding.errors import ArgumentError, finite_number
+from pounding.mechanics.contact import undamped_peak_force
 from pounding.random_vibration.peaks import davenport_peak_factor, envelope_variance, equivalent_stationary
 
 __all__ = ["PAPER_VARIANCE_METHODS", "PaperEstimate", "check_michaelov_n1", "paper_estimate"]

@@ -19,8 +19,8 @@ from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
 
-from pounding.mechanics.contact import undamped_peak_force
 from pounding.hazard.excitation import CloughPenzien
+from pounding.mechanics.contact import undamped_peak_force
 from pounding.units import STANDARD_GRAVITY
 
 __all__ = [

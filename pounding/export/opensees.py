@@ -25,11 +25,11 @@ import numpy as np
 
 from pounding import __version__, defaults
 from pounding.case.case import Case
-from pounding.mechanics.contact import Contact, hertz_peak_penetration
 from pounding.errors import ArgumentError, CaseError, quote
-from pounding.simulation.ground_motion import check_suite_range, ground_motion_batches, record_names
 from pounding.export.opensees_script import CONTACT_MATERIALS
+from pounding.mechanics.contact import Contact, hertz_peak_penetration
 from pounding.output import check_folder, write_atomic
+from pounding.simulation.ground_motion import check_suite_range, ground_motion_batches, record_names
 from pounding.simulation.system import check_records
 
 __all__ = [

@@ -15,7 +15,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from pounding import defaults
-from pounding.hazard.filter_bank import FilterBank
 from pounding.errors import (
     CaseError,
     check_limit,
@@ -24,6 +23,7 @@ from pounding.errors import (
     quote,
     whole_number,
 )
+from pounding.hazard.filter_bank import FilterBank
 
 __all__ = [
     "CloughPenzien",

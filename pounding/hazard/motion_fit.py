@@ -43,8 +43,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from pounding.hazard.accelerograms import G, Accelerogram
 from pounding.errors import ArgumentError, CaseError, described, finite_number, quote
+from pounding.hazard.accelerograms import Accelerogram, G
 from pounding.hazard.excitation import FILTER_DAMPING_MAX, FILTER_FREQUENCY_MAX, CloughPenzien, KanaiTajimi
 
 __all__ = [

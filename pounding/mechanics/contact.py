@@ -34,8 +34,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from pounding.mechanics import integrator
 from pounding.errors import ArgumentError, CaseError, finite_number, quote
+from pounding.mechanics import integrator
 from pounding.mechanics.integrator import contact_force, single_impact_peak
 
 __all__ = [

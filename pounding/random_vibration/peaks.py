@@ -14,8 +14,8 @@ import math
 
 import numpy as np
 
-from pounding.random_vibration.crossing_kernels import clumped_crossings, merged_instants, vanmarcke_clumps
 from pounding.errors import ArgumentError, CaseError
+from pounding.random_vibration.crossing_kernels import clumped_crossings, merged_instants, vanmarcke_clumps
 
 __all__ = [
     "EULER_GAMMA",

@@ -24,9 +24,11 @@ state), :mod:`.card` (the result card), :mod:`.figures` (the plots),
 :mod:`.print_css` (A4).
 """
 
-from pounding.report.card import RESULT_CSS, result_html
 from pounding.display_units import DISPLAY_UNITS, Display, display
+from pounding.report.card import RESULT_CSS, result_html
 from pounding.report.figures import PLOTTED_STEPS, Figures
+from pounding.report.method_section import method_notes
+from pounding.report.provenance import CaseChange, ReportProvenance, case_changes, case_provenance
 from pounding.report.snapshot import (
     DEFAULT_RECORD,
     DEFAULT_SEED,
@@ -37,8 +39,6 @@ from pounding.report.snapshot import (
     compute_snapshot,
     gap_grid,
 )
-from pounding.report.method_section import method_notes
-from pounding.report.provenance import CaseChange, ReportProvenance, case_changes, case_provenance
 from pounding.report.static import REPORT_NOTE, report_html, write_report
 from pounding.report.summary import MonteCarloCheck, monte_carlo_check
 

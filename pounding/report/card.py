@@ -6,9 +6,9 @@ from __future__ import annotations
 import html
 import math
 
-from pounding.simulation.monte_carlo import DesignGap
 from pounding.display_units import Display, display
 from pounding.report.snapshot import MonteCarloPoint, Snapshot
+from pounding.simulation.monte_carlo import DesignGap
 
 # --- the result card -----------------------------------------------------------
 

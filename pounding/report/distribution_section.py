@@ -10,9 +10,9 @@ import numpy as np
 
 from pounding import defaults
 from pounding.display_units import display
-from pounding.simulation.result import quantile_interval
 from pounding.report.snapshot import MonteCarloPoint, Snapshot
 from pounding.report.summary import matching_study
+from pounding.simulation.result import quantile_interval
 
 __all__ = ["distribution_figure", "matching_records", "quantiles_table"]
 

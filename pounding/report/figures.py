@@ -7,10 +7,10 @@ import math
 
 import numpy as np
 
-from pounding.simulation.monte_carlo import DesignGap, TimeHistory
-from pounding.units import STANDARD_GRAVITY
 from pounding.display_units import display
 from pounding.report.snapshot import Snapshot
+from pounding.simulation.monte_carlo import DesignGap, TimeHistory
+from pounding.units import STANDARD_GRAVITY
 
 # --- plots ---------------------------------------------------------------------
 

@@ -9,9 +9,9 @@ import numpy as np
 from pounding import defaults
 from pounding.case.case import Case
 from pounding.display_units import display
-from pounding.simulation.ground_motion import ground_motion_batches
-from pounding.hazard.sources import DesignSpectrum
 from pounding.hazard.response_spectra import pseudo_acceleration_spectrum
+from pounding.hazard.sources import DesignSpectrum
+from pounding.simulation.ground_motion import ground_motion_batches
 from pounding.units import STANDARD_GRAVITY
 
 __all__ = ["SPECTRUM_RECORDS", "hazard_figure"]

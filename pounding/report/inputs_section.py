@@ -9,9 +9,9 @@ from __future__ import annotations
 import html
 
 from pounding.case.case import Case
-from pounding.hazard.design_spectra import ASCE7Spectrum, Eurocode8Spectrum
-from pounding.display_units import display
 from pounding.case.engineering import engineering_terms
+from pounding.display_units import display
+from pounding.hazard.design_spectra import ASCE7Spectrum, Eurocode8Spectrum
 from pounding.hazard.filter_bank import FilterBank
 from pounding.hazard.sources import DesignSpectrum
 from pounding.units import STANDARD_GRAVITY

@@ -9,10 +9,10 @@ import numpy as np
 
 from pounding import defaults
 from pounding.case.case import Case
-from pounding.errors import SimulationError
 from pounding.closed_form.estimator import Estimate, GapCurve, estimate
 from pounding.closed_form.linearization import equivalent_storey_force
 from pounding.closed_form.pair import LinearizedPair
+from pounding.errors import SimulationError
 from pounding.simulation.monte_carlo import DesignGap, SimulationResult, TimeHistory, simulate_record
 
 DEFAULT_SEED = defaults.REPORT_SEED

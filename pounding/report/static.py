@@ -18,11 +18,11 @@ from pathlib import Path
 import numpy as np
 
 from pounding import __version__
-from pounding.report.bokeh_embed import without_external
 from pounding.case.case import Case, load_case
 from pounding.case.engineering import engineering_terms
 from pounding.output import check_target, write_atomic
 from pounding.presets import preset_text
+from pounding.report.bokeh_embed import without_external
 from pounding.report.card import RESULT_CSS, result_html
 from pounding.report.case_keys import key_label
 from pounding.report.distribution_section import quantiles_table

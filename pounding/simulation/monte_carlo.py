@@ -16,7 +16,6 @@ from scipy.special import (  # binomial CDF, Student t quantile; scipy.stats cos
 )
 
 from pounding import defaults
-from pounding.mechanics import integrator as kernel
 from pounding.case.case import Case, as_case
 from pounding.errors import (
     ArgumentError,
@@ -27,6 +26,7 @@ from pounding.errors import (
     finite_number,
     quote,
 )
+from pounding.mechanics import integrator as kernel
 from pounding.simulation.ground_motion import (
     check_suite_range,
     ground_motion_batches,

@@ -9,7 +9,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from pounding import defaults
-from pounding.mechanics import integrator as kernel
 from pounding.case.case import Case, as_case
 from pounding.errors import (
     ArgumentError,
@@ -20,6 +19,7 @@ from pounding.errors import (
     quote,
     whole_number,
 )
+from pounding.mechanics import integrator as kernel
 
 __all__ = ["Cancelled", "KernelSystem", "Settings", "check_records", "check_study", "failure", "kernel_system"]
 

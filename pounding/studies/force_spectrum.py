@@ -13,12 +13,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from pounding import defaults
+from pounding.blas import single_blas_thread
 from pounding.case.case import Case, as_case
 from pounding.case.scaling import with_fundamental_periods
 from pounding.errors import ArgumentError, ConvergenceError, finite_number, quote
-from pounding.blas import single_blas_thread
-from pounding.studies.fragility import check_intensities
 from pounding.simulation.plan import MonteCarloPlan
+from pounding.studies.fragility import check_intensities
 from pounding.studies.monte_carlo_study import MonteCarloForces, check_plan_records, monte_carlo_forces_at
 
 __all__ = ["ForceSpectrum", "force_spectrum"]

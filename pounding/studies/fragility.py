@@ -14,11 +14,11 @@ import numpy as np
 from scipy.special import log_ndtr, ndtr, ndtri
 
 from pounding import defaults
+from pounding.blas import single_blas_thread
 from pounding.case.case import Case, as_case
 from pounding.case.scaling import PeakGroundAcceleration
-from pounding.errors import ArgumentError, ConvergenceError, check_limit, finite_number, quote
 from pounding.closed_form.force_distribution import force_distribution_of
-from pounding.blas import single_blas_thread
+from pounding.errors import ArgumentError, ConvergenceError, check_limit, finite_number, quote
 from pounding.simulation.plan import MonteCarloPlan
 from pounding.studies.monte_carlo_study import MonteCarloForces, check_plan_records, monte_carlo_forces_at
 from pounding.units import STANDARD_GRAVITY

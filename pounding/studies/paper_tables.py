@@ -19,8 +19,8 @@ import numpy as np
 from pounding import defaults
 from pounding.case.case import Case, load_case
 from pounding.closed_form.estimator import estimate
-from pounding.simulation.monte_carlo import simulate
 from pounding.mechanics.structures import BoucWen, Building, Storey
+from pounding.simulation.monte_carlo import simulate
 
 __all__ = [
     "ASSUMPTIONS", "PAPER_TABLES", "RANDOM_FAMILIES", "READINGS", "READINGS_MEASURED", "AccuracyRow", "ValidationRow", "accuracy", "accuracy_cases", "mdof_case", "varied_case",

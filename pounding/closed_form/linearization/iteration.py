@@ -9,13 +9,13 @@ import math
 
 import numpy as np
 
-from pounding.errors import ConvergenceError
-from pounding.hazard.excitation import KanaiTajimi
-from pounding.mechanics.structures import Building
 from pounding.closed_form.linearization.kernels import iteration_moments, mixing_step
 from pounding.closed_form.linearization.linear_system import LinearizedBuilding, state_space
 from pounding.closed_form.linearization.lyapunov import DENSE_LYAPUNOV_LIMIT, lyapunov_covariance, lyapunov_maps
 from pounding.closed_form.linearization.wen import coefficients_from_statistics, wen_constants
+from pounding.errors import ConvergenceError
+from pounding.hazard.excitation import KanaiTajimi
+from pounding.mechanics.structures import Building
 
 DEFAULT_TOLERANCE = 1e-8
 """Relative change of c_e and k_e between iterates that ends the iteration [-]."""

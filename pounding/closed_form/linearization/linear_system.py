@@ -9,11 +9,11 @@ from functools import cached_property
 
 import numpy as np
 
+from pounding.closed_form.linearization.ground import ground_filter
+from pounding.closed_form.linearization.lyapunov import lyapunov_covariance
 from pounding.errors import ConvergenceError
 from pounding.hazard.excitation import KanaiTajimi
 from pounding.mechanics.structures import Building
-from pounding.closed_form.linearization.ground import ground_filter
-from pounding.closed_form.linearization.lyapunov import lyapunov_covariance
 
 # --- linearized buildings and their state space ------------------------------
 

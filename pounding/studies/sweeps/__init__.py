@@ -51,8 +51,8 @@ from pounding.studies.sweeps.engine import (
     monte_carlo_forces,
     sweep,
 )
-from pounding.studies.sweeps.table import monte_carlo_summary
 from pounding.studies.sweeps.spec import parse_values, parse_vary
+from pounding.studies.sweeps.table import monte_carlo_summary
 from pounding.studies.sweeps.work import chunk_sums, point_estimate
 
 __all__ = [

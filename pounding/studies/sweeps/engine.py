@@ -19,9 +19,9 @@ from pounding.studies.sweeps.chart import write_chart
 from pounding.studies.sweeps.points import Point, adjusted_points, case_data, sweep_points
 from pounding.studies.sweeps.spec import normalized_vary
 from pounding.studies.sweeps.store import FIELD, Store, write_json
-from pounding.studies.sweeps.table import need_parquet, table as summary_table, write_table
+from pounding.studies.sweeps.table import need_parquet, write_table
+from pounding.studies.sweeps.table import table as summary_table
 from pounding.studies.sweeps.work import chunk_sums, point_estimate, warm
-
 
 TABLE_FORMATS = ("csv", "parquet")
 SERIAL = "serial"

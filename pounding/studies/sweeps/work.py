@@ -10,7 +10,6 @@ from pounding import defaults
 from pounding.errors import CaseError
 
 
-
 def _fraction_text(value: Fraction) -> str:
     return f"{value.numerator}/{value.denominator}"
 
@@ -73,8 +72,8 @@ def point_estimate(data: dict, adjustment: dict | None = None) -> dict:
     An estimate that cannot be made (e.g. a record too short for Davenport's
     peak factor) gives None figures and its reason in ``warnings``.
     """
-    from pounding.errors import ConvergenceError
     from pounding.closed_form.estimator import estimate
+    from pounding.errors import ConvergenceError
 
     case = _case(data, adjustment)
     try:
