@@ -175,6 +175,16 @@ def test_an_estimate_imports_no_plotting_library():
     assert out.stdout.strip() == "[]"
 
 
+def test_listing_the_cases_loads_no_numerical_library():
+    """``pounding cases`` (and the parser every command builds) stays light: the simulation, numba and scipy
+    load when a command computes, not when the command line starts."""
+    code = ("import io, contextlib, sys\nfrom pounding.cli import main\n"
+            "with contextlib.redirect_stdout(io.StringIO()):\n    main(['cases'])\n"
+            "print(sorted(m for m in ('numba', 'scipy', 'pounding.simulation', 'dask', 'bokeh') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=ROOT)
+    assert out.stdout.strip() == "[]"
+
+
 def test_every_data_file_of_the_package_is_in_the_wheel():
     """pyproject's package data covers every file under pounding/ that is not Python (presets, the accuracy
     data), so that a non-editable install has them."""

@@ -8,13 +8,13 @@ import os
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from pounding import defaults
 from pounding.errors import ArgumentError
 from pounding.output import check_folder, check_target
-from pounding.simulation.plan import MonteCarloPlan, as_plan
 from pounding.studies.sweeps.chart import write_chart
 from pounding.studies.sweeps.points import Point, adjusted_points, case_data, sweep_points
 from pounding.studies.sweeps.spec import normalized_vary
@@ -22,6 +22,9 @@ from pounding.studies.sweeps.store import FIELD, Store, write_json
 from pounding.studies.sweeps.table import need_parquet, write_table
 from pounding.studies.sweeps.table import table as summary_table
 from pounding.studies.sweeps.work import chunk_sums, point_estimate, warm
+
+if TYPE_CHECKING:  # the simulation loads when a study runs: the command line builds its parser from here
+    from pounding.simulation.plan import MonteCarloPlan
 
 TABLE_FORMATS = ("csv", "parquet")
 SERIAL = "serial"
@@ -335,6 +338,8 @@ def sweep(
     pounding.SimulationError
         A record failed to integrate.
     """
+    from pounding.simulation.plan import as_plan
+
     plan = as_plan(plan, options).with_records(defaults.SWEEP_RECORDS)
     _check_budget(max_chunks)
     records, seed, chunk_records, tolerance = plan.records, plan.seed, plan.chunk_records, plan.settings.tolerance
