@@ -8,6 +8,7 @@ acceleration is the integral of S_g over (-inf, inf).
 
 from __future__ import annotations
 
+import itertools
 import math
 import numbers
 from dataclasses import dataclass
@@ -20,6 +21,7 @@ from pounding.errors import (
     check_limit,
     described,
     finite_number,
+    finite_numbers,
     quote,
     whole_number,
 )
@@ -31,6 +33,7 @@ __all__ = [
     "FilterBank",
     "KanaiTajimi",
     "ShinozukaSato",
+    "TabulatedEnvelope",
     "ground_acceleration",
     "ground_accelerations",
     "check_samples",
@@ -173,6 +176,36 @@ class ShinozukaSato:
 
 
 @dataclass(frozen=True)
+class TabulatedEnvelope:
+    """An envelope A(t) [-] given at instants [s], linear between them and held beyond
+    (a recorded suite's mean intensity in time, docs/hazard.md S4).
+
+    Parameters
+    ----------
+    times : tuple of float
+        Increasing instants [s], at least two.
+    values : tuple of float
+        A(t) at them [-], >= 0, not all zero.
+    """
+
+    times: tuple[float, ...]
+    values: tuple[float, ...]
+
+    def __post_init__(self):
+        times, values = finite_numbers("times", self.times), finite_numbers("values", self.values)
+        if len(times) < 2 or len(values) != len(times) or any(b <= a for a, b in itertools.pairwise(times)):
+            raise CaseError("times", "must be at least two increasing instants, one value each")
+        if not (min(values) >= 0 and max(values) > 0):
+            raise CaseError("values", "must be >= 0 and not all zero")
+        object.__setattr__(self, "times", times)
+        object.__setattr__(self, "values", values)
+
+    def __call__(self, t):
+        """A(t) [-]."""
+        return np.interp(np.asarray(t, dtype=float), self.times, self.values)
+
+
+@dataclass(frozen=True)
 class Excitation:
     """A random ground motion: a stationary Gaussian process with a given
     spectrum, optionally modulated by an envelope (Eq. 8).
@@ -183,7 +216,7 @@ class Excitation:
         Two-sided PSD of the stationary ground acceleration.
     duration : float
         Record length [s].
-    envelope : ShinozukaSato or None
+    envelope : ShinozukaSato, TabulatedEnvelope or None
         Deterministic modulating function; None for a stationary record.
     time_step : float
         Sampling interval of the records [s]. Between samples the acceleration
@@ -202,7 +235,7 @@ class Excitation:
 
     spectrum: KanaiTajimi | FilterBank
     duration: float
-    envelope: ShinozukaSato | None = None
+    envelope: ShinozukaSato | TabulatedEnvelope | None = None
     time_step: float = 0.005
     cutoff_frequency: float = 2.0 * math.pi * 25.0
     synthesis_factor: int = 1
@@ -214,8 +247,8 @@ class Excitation:
         object.__setattr__(self, "synthesis_factor", whole_number("synthesis_factor", factor))
         if not isinstance(self.spectrum, (KanaiTajimi, FilterBank)):
             raise CaseError("spectrum", f"must be a KanaiTajimi, CloughPenzien or FilterBank, got {described(self.spectrum)}")
-        if self.envelope is not None and not isinstance(self.envelope, ShinozukaSato):
-            raise CaseError("envelope", f"must be a ShinozukaSato or None, got {described(self.envelope)}")
+        if self.envelope is not None and not isinstance(self.envelope, (ShinozukaSato, TabulatedEnvelope)):
+            raise CaseError("envelope", f"must be a ShinozukaSato, TabulatedEnvelope or None, got {described(self.envelope)}")
         _positive(self, "duration")
         _positive(self, "time_step")
         _positive(self, "cutoff_frequency")

@@ -53,7 +53,9 @@ __all__ = [
     "FittedExcitation",
     "arias_intensity",
     "fit_excitation",
+    "mean_periodogram",
     "significant_duration",
+    "strong_motion",
 ]
 
 CP_MARGIN = 0.9
@@ -141,6 +143,25 @@ class FittedExcitation:
         """ "clough-penzien" or "kanai-tajimi"."""
         return "clough-penzien" if isinstance(self.spectrum, CloughPenzien) else "kanai-tajimi"
 
+    def parameters_at_bounds(self) -> dict:
+        """R5's parameters that ended on a bound of their range: {name: value} (the fit wanted beyond it)."""
+        ranges = {"omega_g": OMEGA_G_RANGE, "xi_g": XI_RANGE, "omega_f": OMEGA_F_RANGE, "xi_f": XI_RANGE}
+        out = {}
+        for name, (low, high) in ranges.items():
+            value = getattr(self.spectrum, name, None)
+            if value is not None and not low * (1 + 1e-6) < value < high * (1 - 1e-6):
+                out[name] = float(value)
+        return out
+
+    def bound_warning(self) -> str:
+        """One line (<= 200 characters) when a parameter sits on its bound (:meth:`parameters_at_bounds`), else ""."""
+        bounds = self.parameters_at_bounds()
+        if not bounds:
+            return ""
+        named = ", ".join(f"{name} = {value:.3g}" for name, value in bounds.items())
+        return (f"The {self.kind.replace('-', ' ').title().replace(' ', '-')} fit to the records stops on a bound ({named}): "
+                "it describes them poorly. The closed form takes the filter bank, not it.")
+
     def to_dict(self) -> dict:
         """JSON-ready, SI: the spectrum's name and parameters, the duration, the misfits and the units."""
         out = {"spectrum": self.kind, "G0": self.spectrum.G0, "omega_g": self.spectrum.omega_g, "xi_g": self.spectrum.xi_g}
@@ -148,11 +169,12 @@ class FittedExcitation:
             out.update(omega_f=self.spectrum.omega_f, xi_f=self.spectrum.xi_f)
         out.update(duration=self.duration, duration_definition=self.duration_definition,
                    misfit={k: float(v) for k, v in self.misfit.items()})
+        out["parameters_at_bounds"] = self.parameters_at_bounds()
         out["units"] = {k: v for k, v in _UNITS.items() if k in out}
         return out
 
 
-def _strong_motion(record: Accelerogram) -> tuple[np.ndarray, float]:
+def strong_motion(record: Accelerogram) -> tuple[np.ndarray, float]:
     """The samples from t_5 to t_95 and D = t_95 - t_5 [s], R2."""
     start, end = significant_duration(record)
     step = record.time_step
@@ -188,9 +210,10 @@ def _bin_edges(low: float, high: float, resolution: float) -> np.ndarray:
     return np.asarray(edges)
 
 
-def _mean_periodogram(segments, cutoff: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def mean_periodogram(segments, cutoff: float, interpolated: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """R3 and R4: the bins' mean frequencies, the records' mean periodogram on them, and
-    the number of periodogram values each bin averages."""
+    the number of periodogram values each bin averages. ``interpolated``: each periodogram times
+    sinc^4(w dt / 2 pi), the PSD of the record linear between its samples, as it is integrated (S1)."""
     from scipy import fft
 
     durations = np.array([segment[2] for segment in segments])
@@ -211,6 +234,8 @@ def _mean_periodogram(segments, cutoff: float) -> tuple[np.ndarray, np.ndarray, 
         window = _taper(values.size)
         scale = step**2 / (2.0 * math.pi * duration * np.mean(window**2))
         periodogram = np.abs(fft.rfft(values * window, n)) ** 2 * scale  # R3
+        if interpolated:
+            periodogram *= np.sinc(omega * step / (2.0 * math.pi)) ** 4
         index = np.searchsorted(edges, omega, side="right") - 1
         inside = (index >= 0) & (index < bins)
         index, omega, periodogram = index[inside], omega[inside], periodogram[inside]
@@ -285,9 +310,9 @@ def fit_excitation(records: Sequence[Accelerogram], cutoff_frequency: float) -> 
                                                 f"frequency pi/dt = {nyquist:.4g} rad/s; lower it")
     segments = []
     for record in records:
-        values, duration = _strong_motion(record)
+        values, duration = strong_motion(record)
         segments.append((values, record.time_step, duration, record.name))
-    omega, mean, counts = _mean_periodogram(segments, cutoff)
+    omega, mean, counts = mean_periodogram(segments, cutoff)
     positive = mean > 1e-12 * mean.max()
     if np.count_nonzero(positive) < 8:
         raise ArgumentError("records", f"the suite's strong motion has power in {np.count_nonzero(positive)} frequency bins "
