@@ -11,7 +11,7 @@ import numpy as np
 from pounding.case.case import Case
 from pounding.hazard.sources import DesignSpectrum
 
-__all__ = ["engineering_terms", "ground_motion_terms", "storey_terms"]
+__all__ = ["engineering_terms", "fundamental_periods", "ground_motion_terms", "storey_terms"]
 
 
 _NAMES = {"KanaiTajimi": "Kanai-Tajimi", "CloughPenzien": "Clough-Penzien"}
@@ -50,12 +50,20 @@ def ground_motion_terms(case: Case) -> dict:
     return terms
 
 
+def fundamental_periods(case: Case) -> tuple[float, ...]:
+    """Each building's fundamental period [s]."""
+    return tuple(float(building.periods[0]) for building in case.buildings)
+
+
 def engineering_terms(case: Case) -> dict:
-    """The keys ``storeys``, ``ground_motion`` and, where they apply, ``fitted_excitation`` (recorded
-    motions) and ``design_spectrum`` of ``estimate --json`` (SI)."""
+    """The keys ``storeys``, ``ground_motion`` and, where they apply, ``fitted_excitation``, ``suite_spectrum``
+    and ``fit_quality`` (recorded motions: S1-S8) and ``design_spectrum`` of ``estimate --json`` (SI)."""
     terms = {"storeys": storey_terms(case), "ground_motion": ground_motion_terms(case)}
     if case.recorded:
         terms["fitted_excitation"] = case.hazard.fitted.to_dict()
+        if case.hazard.suite is not None:
+            terms["suite_spectrum"] = case.hazard.suite.to_dict()
+            terms["fit_quality"] = case.hazard.fit_quality(fundamental_periods(case)).to_dict()
         terms["record_files"] = case.hazard.names
         terms["record_scaling"] = case.hazard.scaling
     elif isinstance(case.hazard, DesignSpectrum):

@@ -152,9 +152,8 @@ def _design(table):
 
 
 def _recorded(table, base_directory: Path):
-    """Recorded accelerograms, scaled, and the spectrum fitted to them."""
+    """Recorded accelerograms, scaled, and the spectra fitted to them: the closed form takes the suite's bank (S1-S5)."""
     from pounding.hazard.accelerograms import read_records
-    from pounding.hazard.motion_fit import fit_excitation
 
     check_keys(table, _RECORD_KEYS, _WHERE)
     patterns = text_list(table, "records", _WHERE)
@@ -168,8 +167,7 @@ def _recorded(table, base_directory: Path):
     coarsest = max(record.time_step for record in records)
     cutoff = number(table, "cutoff_frequency", _WHERE) if "cutoff_frequency" in table else min(
         CUTOFF_FREQUENCY, 0.8 * math.pi / coarsest)
-    fitted = build(_WHERE, fit_excitation, records, cutoff)
-    excitation = build(_WHERE, Excitation, fitted.spectrum, fitted.duration, None, time_step=coarsest, cutoff_frequency=cutoff)
     scaling = ("as recorded" if scale is None and pga is None
                else f"x {scale:g}" if scale is not None else f"each to a PGA of {pga / STANDARD_GRAVITY:g} g")
-    return excitation, RecordedMotions(records, fitted, scaling)
+    motions = build(_WHERE, RecordedMotions.fit, records, cutoff, scaling)  # R1-R6 and S1-S5
+    return build(_WHERE, motions.excitation), motions

@@ -36,7 +36,7 @@ class PeakGroundAcceleration:
     A random process (Kanai-Tajimi, Clough-Penzien, a design spectrum's filter
     bank) has its intensity G0 scaled by (pga / E[PGA])^2: E[PGA] of its records
     (G29) grows as sqrt(G0) (G30). Recorded motions are each scaled to peak ``|a|`` =
-    pga, and the spectrum fitted to them (R1-R6) is fitted once, to the suite
+    pga, and the spectra fitted to them (R1-R6, S1-S5) are fitted once, to the suite
     scaled to one common peak, and then scaled by (pga / that peak)^2, as
     scaling every record by a factor scales its periodogram by the factor squared.
 
@@ -71,10 +71,7 @@ class PeakGroundAcceleration:
         spectrum = dataclasses.replace(excitation.spectrum, G0=excitation.spectrum.G0 * factor**2)
         hazard = None  # a design spectrum's target is the unscaled one: it no longer describes the motion
         if case.recorded:
-            motions = case.hazard
-            fitted = dataclasses.replace(motions.fitted, spectrum=spectrum, periodogram=motions.fitted.periodogram * factor**2)
-            hazard = RecordedMotions(tuple(record.scaled(factor) for record in motions.records), fitted,
-                                     f"each to a PGA of {pga / STANDARD_GRAVITY:.4g} g")
+            hazard = case.hazard.scaled(factor, f"each to a PGA of {pga / STANDARD_GRAVITY:.4g} g")
         return dataclasses.replace(case, excitation=dataclasses.replace(excitation, spectrum=spectrum), hazard=hazard,
                                    name=f"{case.name} at PGA {pga / STANDARD_GRAVITY:.4g} g")
 
@@ -85,13 +82,11 @@ def _records_at_one_peak(case: Case) -> Case:
     peaks = np.array([record.peak for record in motions.records])
     if np.ptp(peaks) <= _EQUAL_PEAKS * peaks.max():
         return case
-    from pounding.hazard.motion_fit import fit_excitation
-
     peak = float(peaks.max())
     records = tuple(record.scaled(peak / record.peak) for record in motions.records)
-    fitted = fit_excitation(records, case.excitation.cutoff_frequency)
-    excitation = dataclasses.replace(case.excitation, spectrum=fitted.spectrum, duration=fitted.duration)
-    return dataclasses.replace(case, excitation=excitation, hazard=RecordedMotions(records, fitted, "each to one PGA"))
+    cutoff = motions.suite.requested_cutoff if motions.suite is not None else case.excitation.cutoff_frequency
+    hazard = RecordedMotions.fit(records, cutoff, "each to one PGA")
+    return dataclasses.replace(case, excitation=hazard.excitation(), hazard=hazard)
 
 
 def _scaled_building(building, period: float, where: str):

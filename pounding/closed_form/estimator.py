@@ -30,7 +30,7 @@ from pounding.closed_form.gap_aware import (
 )
 from pounding.closed_form.pair import LinearizedPair
 from pounding.closed_form.paper_method import PaperEstimate, check_michaelov_n1, paper_estimate
-from pounding.closed_form.regimes import assess, extreme_warnings
+from pounding.closed_form.regimes import assess, extreme_warnings, hazard_warnings
 from pounding.closed_form.response import ContactResponse
 from pounding.closed_form.separation import separation_rules
 from pounding.errors import ArgumentError, check_limit, check_probability
@@ -258,7 +258,8 @@ def estimate(
         separation_rules=separation_rules(pair),
         paper=paper,
         response=pair.stationary_response,
-        warnings=extreme_warnings(pair, force, paper.force_expected, float(velocity), sigma_x) + assessment.warnings,
+        warnings=(hazard_warnings(case) + extreme_warnings(pair, force, paper.force_expected, float(velocity), sigma_x)
+                  + assessment.warnings),
         crossings=crossings,
         force_max_distribution=distribution,
         accuracy_regime=assessment.regime,

@@ -37,6 +37,7 @@ __all__ = [
     "accuracy_regime",
     "assess",
     "extreme_warnings",
+    "hazard_warnings",
 ]
 
 MODERATE_GAP = 0.5
@@ -219,3 +220,18 @@ def extreme_warnings(pair, force: float, paper_force: float | None, velocity: fl
         warnings.append(f"The force is {largest / weight:.2g} times the lighter colliding floor's weight: no building takes "
                         "that, and the model knows no failure. Check the contact stiffness and G0.")
     return tuple(warnings)
+
+
+def hazard_warnings(case) -> tuple[str, ...]:
+    """The warnings of a recorded case on the spectrum fitted to its records: the closed form's process off the
+    records' mean Sa or PGA by more than 10 % (S8, :mod:`pounding.hazard.fit_quality`), and a Kanai-Tajimi or
+    Clough-Penzien description that stops on a bound of its range (R5)."""
+    if not case.recorded:
+        return ()
+    from pounding.case.engineering import fundamental_periods
+
+    motions, warnings = case.hazard, []
+    if motions.suite is not None:
+        warnings.append(motions.fit_quality(fundamental_periods(case)).warning())
+    warnings.append(motions.fitted.bound_warning())
+    return tuple(warning for warning in warnings if warning)

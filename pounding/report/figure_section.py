@@ -119,8 +119,9 @@ def _hazard_caption(snapshot: Snapshot) -> str:
     hazard = snapshot.case.hazard
     if snapshot.case.recorded:
         name = SPECTRUM_NAMES.get(type(hazard.fitted.spectrum).__name__, "")
-        return (f"The mean periodogram of the {len(hazard.records)} recorded motions ({hazard.scaling}) and the "
-                f"{name} spectrum fitted to it, which the closed form takes; the Monte Carlo integrates the records themselves.")
+        return (f"The mean periodogram of the {len(hazard.records)} recorded motions ({hazard.scaling}), the filter bank "
+                f"fitted to it, which the closed form takes (at the strong motion's mean level), and the {name} spectrum "
+                "that describes it; the Monte Carlo integrates the records themselves.")
     code = ", ".join(f"{name} {value} {unit}".strip() for name, value, unit in code_parameters(hazard))
     return (f"The design spectrum ({code}; 5 % damping), the random-vibration spectrum of the filter bank both methods use "
             f"(dashed) and the mean 5 %-damped spectrum of {SPECTRUM_RECORDS} records drawn from it (seed {snapshot.seed}, dots); "

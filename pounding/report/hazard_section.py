@@ -46,14 +46,19 @@ def hazard_figure(case: Case, seed: int = defaults.REPORT_SEED, units: str = "SI
         shown = display(units)
         fitted = case.hazard.fitted
         omega = np.asarray(fitted.frequencies)
-        plot = figure(title=f"Recorded motions ({len(case.hazard.records)}): mean periodogram and the fitted {fitted.to_dict()['spectrum']} spectrum",
+        plot = figure(title=f"Recorded motions ({len(case.hazard.records)}): mean periodogram and the fitted spectra",
                       x_axis_type="log", y_axis_type="log", x_axis_label="circular frequency [rad/s]",
                       y_axis_label=f"two-sided PSD of ground acceleration [{shown.length_unit}^2/s^3]", **common)
         periodogram = np.asarray(fitted.periodogram) / shown.length_scale**2
         positive = periodogram > 0
         plot.line(omega[positive], periodogram[positive], color="#7f7f7f", legend_label="records' mean periodogram")
-        plot.line(omega, fitted.spectrum.psd(omega) / shown.length_scale**2, line_width=3, color="#1f77b4",
-                  legend_label="fitted (the closed form's)")
+        suite = case.hazard.suite
+        if suite is not None:
+            band = omega[omega <= suite.cutoff_frequency]
+            plot.line(band, suite.bank.psd(band) / suite.peak_to_mean / shown.length_scale**2, line_width=3, color="#1f77b4",
+                      legend_label="filter bank (the closed form's)")
+        plot.line(omega, fitted.spectrum.psd(omega) / shown.length_scale**2, line_width=2, line_dash="dashed",
+                  color="#ff7f0e", legend_label=f"{fitted.to_dict()['spectrum']} (a description)")
     plot.legend.location = "top_right"
     plot.legend.click_policy = "hide"
     return plot

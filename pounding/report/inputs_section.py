@@ -88,8 +88,10 @@ def _excitation_rows(case: Case, units: str, terms: dict) -> list[tuple[str, str
                  ("records", f"{len(hazard.records)}: {', '.join(hazard.names[:6])}{', ...' if len(hazard.records) > 6 else ''}", ""),
                  ("scaling", hazard.scaling, ""),
                  ("records' mean PGA", _number(motion["records_pga_mean"] / _G), "g"),
-                 ("spectrum fitted for the closed form", SPECTRUM_NAMES.get(type(fitted.spectrum).__name__, ""), ""),
-                 (f"duration of the fitted process ({fitted.duration_definition})", f"{fitted.duration:.4g}", "s")]
+                 ("spectrum describing the records", SPECTRUM_NAMES.get(type(fitted.spectrum).__name__, ""), ""),
+                 (f"significant duration ({fitted.duration_definition})", f"{fitted.duration:.4g}", "s")]
+        if hazard.suite is not None:
+            rows.append(("the closed form's process", hazard.suite.describe(), ""))
     elif isinstance(hazard, DesignSpectrum):
         rows += [("form", "design spectrum", "")] + code_parameters(hazard)
         rows.append(("compatible filter bank (both methods)", f"{len(spectrum.frequencies)} band-pass filtered white noises", ""))
