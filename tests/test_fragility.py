@@ -15,6 +15,7 @@ from pounding.cli.commands import main
 from pounding.hazard.accelerograms import Accelerogram, write_at2
 from pounding.hazard.excitation import ground_accelerations
 from pounding.hazard.motion_fit import fit_excitation
+from pounding.hazard.suite_spectrum import fit_suite_spectrum
 from pounding.presets import preset_text
 from pounding.random_vibration.peak_factors import expected_peak_ground_acceleration
 from pounding.simulation.plan import MonteCarloPlan
@@ -102,9 +103,14 @@ def test_recorded_motions_are_each_scaled_to_the_pga(suite):
     scaled = scaling.case_at(0.3 * G)
     assert [r.peak for r in scaled.hazard.records] == pytest.approx([0.3 * G] * 6, rel=1e-12)
     # the shortcut (fit once, scale G0 by the square) against a fit to the records as scaled: the fit is scale-equivariant
-    refit = fit_excitation(scaled.hazard.records, case.excitation.cutoff_frequency)
-    assert scaled.excitation.spectrum.G0 == pytest.approx(refit.spectrum.G0, rel=1e-3)
-    assert scaled.excitation.spectrum.omega_g == pytest.approx(refit.spectrum.omega_g, rel=1e-3)
+    refit = fit_excitation(scaled.hazard.records, case.hazard.suite.requested_cutoff)
+    assert scaled.hazard.fitted.spectrum.G0 == pytest.approx(refit.spectrum.G0, rel=1e-3)
+    assert scaled.hazard.fitted.spectrum.omega_g == pytest.approx(refit.spectrum.omega_g, rel=1e-3)
+    # and the closed form's bank (S1-S5), as it is fitted to the scaled records
+    bank = fit_suite_spectrum(scaled.hazard.records, case.hazard.suite.requested_cutoff).bank
+    assert scaled.excitation.spectrum == scaled.hazard.suite.bank
+    assert scaled.excitation.spectrum.G0 == pytest.approx(bank.G0, rel=1e-3)
+    np.testing.assert_allclose(scaled.excitation.spectrum.weights, bank.weights, rtol=1e-6, atol=1e-9)
 
 
 def test_a_recorded_suite_needs_as_many_records_as_asked(suite):

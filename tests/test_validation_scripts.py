@@ -52,6 +52,7 @@ RUNS = {
     "record_synthesis": [dict(cases=1, factor_records=2, clough_penzien_records=4, design_records=4)],
     "residual_input": [dict(cases=1, records=2, trajectories=10)],
     "separation_rules": [dict(cases=1, records=4)],
+    "suite_spectrum_accuracy": [dict(records=6, suites=("kanai-tajimi", "sampled 0.1 s"), pairs=("section5-T2-0.4",))],
     "yielding_pairs": [dict(cases=1, records=2, duration=20.0)],
 }
 PRINTS = {"yielding_pairs": "Monte Carlo without contact / linearized"}  # the others print Markdown tables
