@@ -51,13 +51,18 @@ def ground_motion_terms(case: Case) -> dict:
 
 
 def engineering_terms(case: Case) -> dict:
-    """The keys ``storeys``, ``ground_motion`` and, where they apply, ``fitted_excitation`` (recorded
-    motions) and ``design_spectrum`` of ``estimate --json`` (SI)."""
+    """The keys ``storeys``, ``ground_motion`` and, where they apply, ``fitted_excitation``, ``record_files``,
+    ``record_scaling``, ``record_source``, ``record_metadata`` and ``spectrum_scaling`` (recorded motions) and
+    ``design_spectrum`` of ``estimate --json`` (SI)."""
     terms = {"storeys": storey_terms(case), "ground_motion": ground_motion_terms(case)}
     if case.recorded:
         terms["fitted_excitation"] = case.hazard.fitted.to_dict()
         terms["record_files"] = case.hazard.names
         terms["record_scaling"] = case.hazard.scaling
+        terms["record_source"] = case.hazard.source
+        terms["record_metadata"] = case.hazard.metadata
+        if case.hazard.spectrum_scaling is not None:
+            terms["spectrum_scaling"] = case.hazard.spectrum_scaling.to_dict()
     elif isinstance(case.hazard, DesignSpectrum):
         terms["design_spectrum"] = case.hazard.to_dict()
     return terms

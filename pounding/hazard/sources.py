@@ -67,12 +67,19 @@ class RecordedMotions:
     fitted : FittedExcitation
         The Kanai-Tajimi or Clough-Penzien spectrum the closed form takes.
     scaling : str
-        How the records were scaled, in words (``"as recorded"``, ``"x 1.3"``, ``"each to a PGA of 0.3 g"``).
+        How the records were scaled, in words (``"as recorded"``, ``"x 1.3"``, ``"each to a PGA of 0.3 g"``,
+        or to a design spectrum).
+    source : str
+        Where the records came from, in words (a FEMA P695 set and its events; files).
+    spectrum_scaling : SpectrumScaling or None
+        How the suite was scaled to a design spectrum (:mod:`pounding.hazard.record_scaling`), if it was.
     """
 
     records: tuple[Accelerogram, ...]
     fitted: FittedExcitation
     scaling: str = "as recorded"
+    source: str = ""
+    spectrum_scaling: object = None
 
     def __post_init__(self):
         from pounding.hazard.accelerograms import Accelerogram
@@ -86,6 +93,15 @@ class RecordedMotions:
     def names(self) -> list[str]:
         return [record.name for record in self.records]
 
+    @property
+    def metadata(self) -> list[dict]:
+        """Each record's metadata (event, year, station...; empty for a file)."""
+        return [dict(record.metadata) for record in self.records]
+
     def to_dict(self) -> dict:
-        """JSON-ready: the files, their scaling, and the fitted spectrum (SI)."""
-        return {"records": self.names, "scaling": self.scaling, "fitted_excitation": self.fitted.to_dict()}
+        """JSON-ready: the records, their source, metadata and scaling, and the fitted spectrum (SI)."""
+        out = {"records": self.names, "source": self.source, "metadata": self.metadata, "scaling": self.scaling,
+               "fitted_excitation": self.fitted.to_dict()}
+        if self.spectrum_scaling is not None:
+            out["spectrum_scaling"] = self.spectrum_scaling.to_dict()
+        return out
