@@ -8,7 +8,14 @@ from __future__ import annotations
 
 import math
 
-from dashboard.inputs import DESIGN_CODE_KEYS, FITS, RECORD_SET_FORM, RECORDED_FORMS, BuildingInputs, CaseInputs
+from dashboard.inputs import (
+    DESIGN_CODE_KEYS,
+    RECORD_SET_FORM,
+    RECORDED_FORMS,
+    SPECTRUM_FITS,
+    BuildingInputs,
+    CaseInputs,
+)
 from pounding.case.case import Case
 from pounding.display_units import Display, display
 from pounding.errors import CaseError
@@ -75,7 +82,7 @@ def _recorded(v: dict, records: list[str]) -> dict:
     elif v["scaling"] == "PGA":
         table["pga"] = v["records_pga"]
     elif v["scaling"] == "to the design spectrum":
-        table["scale_to"] = {**_code_table(v), "fit": FITS[v["fit"]]}
+        table["scale_to"] = {**_code_table(v), "fit": SPECTRUM_FITS[v["fit"]]}
     return table
 
 
@@ -170,7 +177,7 @@ def _recorded_values(table: dict) -> dict:
         values["records_pga"] = table["pga"]
     elif "scale_to" in table:
         values |= _code_values(table["scale_to"], "excitation.scale_to")
-        values["fit"] = {key: name for name, key in FITS.items()}[table["scale_to"].get("fit", "not-below")]
+        values["fit"] = {key: name for name, key in SPECTRUM_FITS.items()}[table["scale_to"].get("fit", "not-below")]
     return values
 
 

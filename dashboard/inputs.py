@@ -21,11 +21,11 @@ from pounding.mechanics.contact import CONTACT_MODELS, contact_law
 __all__ = [
     "DESIGN_CODE_KEYS",
     "EXCITATION_FORMS",
-    "FITS",
-    "RECORD_SETS",
     "HYSTERESIS_FORMS",
     "INTENSITY_FORMS",
+    "RECORD_SETS",
     "SCALINGS",
+    "SPECTRUM_FITS",
     "BuildingInputs",
     "CaseInputs",
     "input_names",
@@ -42,7 +42,7 @@ INTENSITY_FORMS = ("PGA", "G0")
 DESIGN_CODE_KEYS = {"EN 1998-1": "ec8", "ASCE 7-16": "asce7-16"}
 """The design codes the dashboard offers, by the name it shows, and their key in a case file (``excitation.code``)."""
 SCALINGS = ("as recorded", "scale factor", "PGA", "to the design spectrum")
-FITS = {"mean not below it": "not-below", "least squares": "least-squares", "each record": "each-record"}
+SPECTRUM_FITS = {"mean not below it": "not-below", "least squares": "least-squares", "each record": "each-record"}
 """How records are scaled to the design spectrum, by the name the dashboard shows, and its ``scale_to.fit`` in a case file."""
 HYSTERESIS_FORMS = ("yield drift", "yield force", "elastic", "Bouc-Wen")
 """How a storey's hysteresis is given: the engineer's forms (G28), elastic, or the raw Bouc-Wen parameters (advanced)."""
@@ -126,7 +126,7 @@ class CaseInputs(param.Parameterized):
     scaling = param.Selector(default=SCALINGS[0], objects=list(SCALINGS), label="records scaled",
                              doc="Records as recorded, times a factor, each to a peak ground acceleration, or to the design "
                              "spectrum over 0.2 x the shorter to 2 x the longer fundamental period.")
-    fit = param.Selector(default=list(FITS)[0], objects=list(FITS), label="scaled to the spectrum by",
+    fit = param.Selector(default=list(SPECTRUM_FITS)[0], objects=list(SPECTRUM_FITS), label="scaled to the spectrum by",
                          doc="One factor with the records' mean Sa nowhere below the spectrum (ASCE 7), one factor by least "
                          "squares, or one factor a record by least squares.")
     scale = param.Number(1.0, bounds=(0.0, 100.0), inclusive_bounds=(False, True), label="scale factor [-]", doc="Every record times this.")

@@ -74,7 +74,7 @@ class PeakGroundAcceleration:
             motions = case.hazard
             fitted = dataclasses.replace(motions.fitted, spectrum=spectrum, periodogram=motions.fitted.periodogram * factor**2)
             hazard = RecordedMotions(tuple(record.scaled(factor) for record in motions.records), fitted,
-                                     f"each to a PGA of {pga / STANDARD_GRAVITY:.4g} g")
+                                     f"each to a PGA of {pga / STANDARD_GRAVITY:.4g} g", source=motions.source)
         return dataclasses.replace(case, excitation=dataclasses.replace(excitation, spectrum=spectrum), hazard=hazard,
                                    name=f"{case.name} at PGA {pga / STANDARD_GRAVITY:.4g} g")
 
@@ -91,7 +91,8 @@ def _records_at_one_peak(case: Case) -> Case:
     records = tuple(record.scaled(peak / record.peak) for record in motions.records)
     fitted = fit_excitation(records, case.excitation.cutoff_frequency)
     excitation = dataclasses.replace(case.excitation, spectrum=fitted.spectrum, duration=fitted.duration)
-    return dataclasses.replace(case, excitation=excitation, hazard=RecordedMotions(records, fitted, "each to one PGA"))
+    return dataclasses.replace(case, excitation=excitation, hazard=RecordedMotions(records, fitted, "each to one PGA",
+                                                                                     source=motions.source))
 
 
 def _scaled_building(building, period: float, where: str):

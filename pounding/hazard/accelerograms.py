@@ -33,9 +33,9 @@ from pounding.errors import ArgumentError, CaseError, check_limit, described, fi
 from pounding.units import STANDARD_GRAVITY
 
 __all__ = [
-    "G",
     "SUFFIXES",
     "Accelerogram",
+    "G",
     "expand_records",
     "read_accelerogram",
     "read_records",

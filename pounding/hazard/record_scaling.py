@@ -29,7 +29,7 @@ import numpy as np
 from pounding.errors import ArgumentError, quote
 from pounding.hazard.response_spectra import pseudo_acceleration_spectrum
 
-__all__ = ["FITS", "PERIODS_PER_DECADE", "SpectrumScaling", "scale_to_spectrum", "suite_spectra", "usable_band"]
+__all__ = ["FITS", "PERIODS_PER_DECADE", "SpectrumScaling", "scale_to_spectrum", "scaling_periods", "suite_spectra", "usable_band"]
 
 FITS = ("not-below", "least-squares", "each-record")
 """The ways of scaling to a spectrum: one factor, the mean not below the target (S2); one factor by
