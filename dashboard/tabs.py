@@ -50,15 +50,25 @@ def fragility_plot(dashboard, snapshot, units: str, capacity: float):
 
 def hazard_plot(dashboard, snapshot, units: str, capacity: float):
     from pounding.case.engineering import ground_motion_terms
-    from pounding.report.hazard_section import hazard_figure
+    from pounding.report.hazard_section import hazard_figure, scaled_records_figure
 
-    figure = hazard_figure(snapshot.case, snapshot.seed)
-    terms = ground_motion_terms(snapshot.case)
+    case = snapshot.case
+    figure = hazard_figure(case, snapshot.seed)
+    terms = ground_motion_terms(case)
     text = (f"{terms['source']}: expected PGA {terms['pga_expected'] / STANDARD_GRAVITY:.3f} g, "
             f"RMS {terms['rms_acceleration'] / STANDARD_GRAVITY:.3f} g.")
     if figure is None:  # a process given by its parameters: its PSD is the 'Spectra' tab's
         return pn.pane.Markdown(text + " Its power spectral density is in the 'Spectra' tab.")
-    return pn.Column(pn.pane.Markdown(text), pn.pane.Bokeh(figure, sizing_mode="stretch_width"), sizing_mode="stretch_width")
+    shown = []
+    if case.recorded:
+        source = f" {case.hazard.source}." if case.hazard.source else ""
+        text = f"{len(case.hazard.records)} recorded motions.{source} Scaled {case.hazard.scaling}. " + text
+        # the records' mean Sa beside the code spectrum (and the expected Sa of the process the closed form takes)
+        scaled = scaled_records_figure(case)
+        if scaled is not None:
+            shown.append(pn.pane.Bokeh(scaled, sizing_mode="stretch_width"))
+    shown.append(pn.pane.Bokeh(figure, sizing_mode="stretch_width"))
+    return pn.Column(pn.pane.Markdown(text), *shown, sizing_mode="stretch_width")
 
 
 _BUILDERS = {"distribution": distribution_plot, "fragility": fragility_plot, "hazard": hazard_plot}

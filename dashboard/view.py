@@ -128,8 +128,8 @@ class PoundingDashboard(pn.viewable.Viewer):
         self.sidebar = pn.Column(
             self._widget("preset"),
             pn.Card(*self._inputs("gap", "target_probability", "capacity", "restitution"), title="Design", sizing_mode="stretch_width"),
-            pn.Card(*self._inputs("ground_motion", "intensity", "pga", "G0", "omega_g", "xi_g", "code", "ag", "ground_type",
-                                  "spectrum_type", "SDS", "SD1", "TL", "scaling", "scale", "records_pga"),
+            pn.Card(*self._inputs("ground_motion", "intensity", "pga", "G0", "omega_g", "xi_g", "record_set", "component",
+                                  "scaling", "scale", "records_pga", "fit", "code", "ag", "ground_type", "spectrum_type", "SDS", "SD1", "TL"),
                     pn.Column(pn.pane.Markdown("Records (.AT2):", margin=(0, 10)), self.records_upload, uploaded,
                               visible=pn.bind(lambda form: form == "recorded motions", m.param.ground_motion), sizing_mode="stretch_width"),
                     *self._inputs("duration", "envelope", "B1", "B2"),

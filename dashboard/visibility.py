@@ -5,7 +5,7 @@ only with the advanced switch on. An input is named by its owner (the model, or 
 
 from __future__ import annotations
 
-from dashboard.inputs import BuildingInputs
+from dashboard.inputs import RECORD_SET_FORM, RECORDED_FORMS, BuildingInputs
 
 __all__ = ["ADVANCED", "applies", "visible"]
 
@@ -35,7 +35,8 @@ def _storey_input_applies(model, building: BuildingInputs, name: str) -> bool:
 
 def _excitation_input_applies(model, name: str) -> bool:
     form = model.ground_motion
-    synthetic = form != "recorded motions"
+    synthetic = form not in RECORDED_FORMS
+    to_spectrum = not synthetic and model.scaling == "to the design spectrum"
     if name in ("duration", "envelope"):
         return synthetic
     if name in ("B1", "B2"):
@@ -46,18 +47,23 @@ def _excitation_input_applies(model, name: str) -> bool:
         return form == "Kanai-Tajimi" and model.intensity == "PGA"
     if name == "G0":
         return form == "Kanai-Tajimi" and model.intensity == "G0"
+    coded = form == "design spectrum" or to_spectrum
     if name == "code":
-        return form == "design spectrum"
+        return coded
     if name in ("ag", "ground_type", "spectrum_type"):
-        return form == "design spectrum" and model.code == "EN 1998-1"
+        return coded and model.code == "EN 1998-1"
     if name in ("SDS", "SD1", "TL"):
-        return form == "design spectrum" and model.code == "ASCE 7-16"
+        return coded and model.code == "ASCE 7-16"
+    if name in ("record_set", "component"):
+        return form == RECORD_SET_FORM
     if name == "scaling":
-        return form == "recorded motions"
+        return not synthetic
+    if name == "fit":
+        return to_spectrum
     if name == "scale":
-        return form == "recorded motions" and model.scaling == "scale factor"
+        return not synthetic and model.scaling == "scale factor"
     if name == "records_pga":
-        return form == "recorded motions" and model.scaling == "PGA"
+        return not synthetic and model.scaling == "PGA"
     return True
 
 

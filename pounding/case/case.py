@@ -252,7 +252,9 @@ def case_from_dict(data: Mapping, name: str = "case", base_directory: str | os.P
         raise CaseError("buildings", f"exactly two [[buildings]] tables are required, got {count}")
     if not isinstance(name, str):
         raise CaseError("name", f"must be a string, got {described(name)}")
-    excitation, hazard = read_excitation(data["excitation"], units, Path(base_directory or "."))
+    excitation, hazard = read_excitation(data["excitation"], units, Path(base_directory or "."),
+                                         lambda: [float(_building(b, units, f"buildings.{i}").periods[0])
+                                                  for i, b in enumerate(buildings, start=1)])
     return build(
         "",
         Case,

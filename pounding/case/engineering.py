@@ -56,8 +56,9 @@ def fundamental_periods(case: Case) -> tuple[float, ...]:
 
 
 def engineering_terms(case: Case) -> dict:
-    """The keys ``storeys``, ``ground_motion`` and, where they apply, ``fitted_excitation``, ``suite_spectrum``
-    and ``fit_quality`` (recorded motions: S1-S8) and ``design_spectrum`` of ``estimate --json`` (SI)."""
+    """The keys ``storeys``, ``ground_motion`` and, where they apply, ``fitted_excitation``, ``suite_spectrum``,
+    ``fit_quality`` (recorded motions: S1-S8), ``record_files``, ``record_scaling``, ``record_source``,
+    ``record_metadata`` and ``spectrum_scaling`` (recorded motions) and ``design_spectrum`` of ``estimate --json`` (SI)."""
     terms = {"storeys": storey_terms(case), "ground_motion": ground_motion_terms(case)}
     if case.recorded:
         terms["fitted_excitation"] = case.hazard.fitted.to_dict()
@@ -66,6 +67,10 @@ def engineering_terms(case: Case) -> dict:
             terms["fit_quality"] = case.hazard.fit_quality(fundamental_periods(case)).to_dict()
         terms["record_files"] = case.hazard.names
         terms["record_scaling"] = case.hazard.scaling
+        terms["record_source"] = case.hazard.source
+        terms["record_metadata"] = case.hazard.metadata
+        if case.hazard.spectrum_scaling is not None:
+            terms["spectrum_scaling"] = case.hazard.spectrum_scaling.to_dict()
     elif isinstance(case.hazard, DesignSpectrum):
         terms["design_spectrum"] = case.hazard.to_dict()
     return terms

@@ -4,8 +4,10 @@
   ``"clough-penzien"``, with ``G0`` or ``pga`` (g);
 - a code design spectrum: ``spectrum = "design"`` with ``code = "ec8"``,
   ``"asce7-16"`` or ``"table"``, turned into a compatible filter bank;
-- recorded accelerograms: ``records = ["motions/*.AT2", ...]``, to which a
-  spectrum is fitted for the closed form.
+- recorded accelerograms: ``records = ["motions/*.AT2", ...]`` or a FEMA P695
+  set (``"fema-p695:far-field"``), scaled by a factor, to a PGA or to a design
+  spectrum (``[excitation.scale_to]``), to which a spectrum is fitted for the
+  closed form.
 
 Accelerations written in g (``pga``, ``ag``, ``SDS``, ``SD1``,
 ``accelerations``) are in g whatever the file's unit system.
@@ -18,7 +20,7 @@ import math
 from pathlib import Path
 
 from pounding import defaults
-from pounding.case.fields import build, check_keys, choice, number, quantity, text_list
+from pounding.case.fields import build, check_keys, choice, number, quantity
 from pounding.errors import CaseError, quote
 from pounding.hazard.excitation import CloughPenzien, Excitation, KanaiTajimi, ShinozukaSato
 from pounding.hazard.sources import DesignSpectrum, RecordedMotions
@@ -39,20 +41,23 @@ _CODE_KEYS = {
     "table": {"periods", "accelerations"},
 }
 _DESIGN_KEYS = {"spectrum", "code"} | _COMMON
-_RECORD_KEYS = {"records", "scale", "pga", "cutoff_frequency"}
+_RECORD_KEYS = {"records", "scale", "pga", "cutoff_frequency", "component", "record_ids", "scale_to"}
+_SCALE_TO_KEYS = {"code", "fit", "not_below", "periods"}
 _WHERE = "excitation"
 CUTOFF_FREQUENCY = 2.0 * math.pi * 25.0
 """Default cutoff of recorded motions [rad/s] (25 Hz), lowered to 0.8 of the coarsest record's Nyquist frequency."""
 
 
-def read_excitation(table, units: UnitSystem, base_directory: Path):
+def read_excitation(table, units: UnitSystem, base_directory: Path, building_periods=None):
     """The case's :class:`Excitation` and where it came from (a
     :class:`DesignSpectrum`, :class:`RecordedMotions`, or None for a process
-    given by its parameters). Record paths are relative to ``base_directory``."""
+    given by its parameters). Record paths are relative to ``base_directory``;
+    ``building_periods()`` gives the buildings' fundamental periods [s] (the
+    default period range of records scaled to a spectrum)."""
     if not hasattr(table, "get"):
         check_keys(table, _PROCESS_KEYS, _WHERE)  # raises: not a table
     if "records" in table:
-        return _recorded(table, base_directory)
+        return _recorded(table, base_directory, building_periods)
     spectrum = choice(table, "spectrum", SPECTRA, _WHERE, "kanai-tajimi")
     if spectrum == "design":
         return _design(table)
@@ -109,10 +114,9 @@ def _process(table, units: UnitSystem, name: str) -> Excitation:
     return excitation
 
 
-def _design_target(table, code: str):
+def _design_target(table, code: str, where: str = _WHERE):
     from pounding.hazard.design_spectra import ASCE7Spectrum, Eurocode8Spectrum, TabulatedSpectrum
 
-    where = _WHERE
     if code == "ec8":
         ground = table.get("ground_type")
         if not (isinstance(ground, str) and ground in GROUND_TYPES):
@@ -120,9 +124,9 @@ def _design_target(table, code: str):
         kind = table.get("spectrum_type", 1)
         if kind not in (1, 2) or isinstance(kind, bool):
             raise CaseError(f"{where}.spectrum_type", f"must be 1 or 2 (EN 1998-1 3.2.2.2), got {quote(kind)}")
-        return build(where, Eurocode8Spectrum, _in_g(table, "ag"), ground, int(kind))
+        return build(where, Eurocode8Spectrum, _in_g(table, "ag", where), ground, int(kind))
     if code == "asce7-16":
-        return build(where, ASCE7Spectrum, _in_g(table, "SDS"), _in_g(table, "SD1"), number(table, "TL", where))
+        return build(where, ASCE7Spectrum, _in_g(table, "SDS", where), _in_g(table, "SD1", where), number(table, "TL", where))
     periods, accelerations = table.get("periods"), table.get("accelerations")
     for key, values in (("periods", periods), ("accelerations", accelerations)):
         if not (isinstance(values, list) and len(values) >= 2):
@@ -151,23 +155,28 @@ def _design(table):
     return excitation, DesignSpectrum(code, target, compatible)
 
 
-def _recorded(table, base_directory: Path):
+def _scale_to_target(table):
+    """The design spectrum of ``[excitation.scale_to]``: the keys of ``spectrum = "design"``'s ``code``."""
+    where = f"{_WHERE}.scale_to"
+    if not hasattr(table, "get"):
+        raise CaseError(where, f"must be a table: [excitation.scale_to] with code = \"ec8\", \"asce7-16\" or \"table\" "
+                        f"and its keys, got {quote(table)}")
+    code = choice(table, "code", CODES, where, "")
+    check_keys(table, _SCALE_TO_KEYS | _CODE_KEYS[code], where)
+    return _design_target(table, code, where)
+
+
+def _recorded(table, base_directory: Path, building_periods=None):
     """Recorded accelerograms, scaled, and the spectra fitted to them: the closed form takes the suite's bank (S1-S5)."""
-    from pounding.hazard.accelerograms import read_records
+    from pounding.case.record_suite import read_suite
 
     check_keys(table, _RECORD_KEYS, _WHERE)
-    patterns = text_list(table, "records", _WHERE)
-    if "scale" in table and "pga" in table:
-        raise CaseError(f"{_WHERE}.pga", "give scale or pga, not both")
-    scale = number(table, "scale", _WHERE) if "scale" in table else None
-    if scale is not None and not scale > 0:
-        raise CaseError(f"{_WHERE}.scale", f"must be > 0, got {scale:g}")
-    pga = _in_g(table, "pga") if "pga" in table else None
-    records = read_records(patterns, base_directory, scale=scale, pga=pga, field=f"{_WHERE}.records")
+    target = _scale_to_target(table["scale_to"]) if "scale_to" in table else None
+    suite = read_suite(table, base_directory, building_periods, target)
+    records = suite.records
     coarsest = max(record.time_step for record in records)
     cutoff = number(table, "cutoff_frequency", _WHERE) if "cutoff_frequency" in table else min(
         CUTOFF_FREQUENCY, 0.8 * math.pi / coarsest)
-    scaling = ("as recorded" if scale is None and pga is None
-               else f"x {scale:g}" if scale is not None else f"each to a PGA of {pga / STANDARD_GRAVITY:g} g")
-    motions = build(_WHERE, RecordedMotions.fit, records, cutoff, scaling)  # R1-R6 and S1-S5
+    motions = build(_WHERE, RecordedMotions.fit, records, cutoff, suite.scaling, suite.source,
+                    suite.spectrum_scaling)  # R1-R6 and S1-S5
     return build(_WHERE, motions.excitation), motions

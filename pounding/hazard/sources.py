@@ -73,15 +73,22 @@ class RecordedMotions:
         The Kanai-Tajimi or Clough-Penzien spectrum fitted to the suite (R1-R6): a description in an
         engineer's terms.
     scaling : str
-        How the records were scaled, in words (``"as recorded"``, ``"x 1.3"``, ``"each to a PGA of 0.3 g"``).
+        How the records were scaled, in words (``"as recorded"``, ``"x 1.3"``, ``"each to a PGA of 0.3 g"``,
+        or to a design spectrum).
     suite : SuiteSpectrum or None
         The filter bank and envelope the closed form takes (S1-S5); None: the case takes ``fitted``.
+    source : str
+        Where the records came from, in words (a FEMA P695 set and its events; files).
+    spectrum_scaling : SpectrumScaling or None
+        How the suite was scaled to a design spectrum (:mod:`pounding.hazard.record_scaling`), if it was.
     """
 
     records: tuple[Accelerogram, ...]
     fitted: FittedExcitation
     scaling: str = "as recorded"
     suite: SuiteSpectrum | None = None
+    source: str = ""
+    spectrum_scaling: object = None
 
     def __post_init__(self):
         from pounding.hazard.accelerograms import Accelerogram
@@ -92,13 +99,16 @@ class RecordedMotions:
         object.__setattr__(self, "records", records)
 
     @classmethod
-    def fit(cls, records, cutoff_frequency: float, scaling: str = "as recorded") -> RecordedMotions:
-        """``records`` with both fits below ``cutoff_frequency`` [rad/s]: R1-R6 and S1-S5."""
+    def fit(cls, records, cutoff_frequency: float, scaling: str = "as recorded", source: str = "",
+            spectrum_scaling=None) -> RecordedMotions:
+        """``records`` with both fits below ``cutoff_frequency`` [rad/s]: R1-R6 and S1-S5; ``source`` and
+        ``spectrum_scaling`` as the attributes."""
         from pounding.hazard.motion_fit import fit_excitation
         from pounding.hazard.suite_spectrum import fit_suite_spectrum
 
         records = tuple(records)
-        return cls(records, fit_excitation(records, cutoff_frequency), scaling, fit_suite_spectrum(records, cutoff_frequency))
+        return cls(records, fit_excitation(records, cutoff_frequency), scaling, fit_suite_spectrum(records, cutoff_frequency),
+                   source, spectrum_scaling)
 
     def excitation(self) -> Excitation:
         """The process the closed form takes: the suite's bank and envelope (S1-S5), or the fitted spectrum over
@@ -117,7 +127,7 @@ class RecordedMotions:
         fitted = dataclasses.replace(self.fitted, spectrum=dataclasses.replace(spectrum, G0=spectrum.G0 * factor**2),
                                      periodogram=self.fitted.periodogram * factor**2)
         suite = None if self.suite is None else self.suite.scaled(factor)
-        out = RecordedMotions(tuple(record.scaled(factor) for record in self.records), fitted, scaling, suite)
+        out = RecordedMotions(tuple(record.scaled(factor) for record in self.records), fitted, scaling, suite, self.source)
         if "comparison" in self.__dict__:  # computed once: the ratios do not change with the scale
             out.__dict__["comparison"] = self.comparison.scaled(factor)
         return out
@@ -137,9 +147,17 @@ class RecordedMotions:
     def names(self) -> list[str]:
         return [record.name for record in self.records]
 
+    @property
+    def metadata(self) -> list[dict]:
+        """Each record's metadata (event, year, station...; empty for a file)."""
+        return [dict(record.metadata) for record in self.records]
+
     def to_dict(self) -> dict:
-        """JSON-ready: the files, their scaling, and the fitted spectra (SI)."""
-        out = {"records": self.names, "scaling": self.scaling, "fitted_excitation": self.fitted.to_dict()}
+        """JSON-ready: the records, their source, metadata and scaling, and the fitted spectra (SI)."""
+        out = {"records": self.names, "source": self.source, "metadata": self.metadata, "scaling": self.scaling,
+               "fitted_excitation": self.fitted.to_dict()}
         if self.suite is not None:
             out["suite_spectrum"] = self.suite.to_dict()
+        if self.spectrum_scaling is not None:
+            out["spectrum_scaling"] = self.spectrum_scaling.to_dict()
         return out

@@ -14,7 +14,7 @@ from pounding import defaults
 from pounding.display_units import Display, display
 from pounding.report.distribution_section import distribution_figure, matching_records
 from pounding.report.figures import Figures
-from pounding.report.hazard_section import SPECTRUM_RECORDS, hazard_figure
+from pounding.report.hazard_section import SPECTRUM_RECORDS, hazard_figure, scaled_records_figure
 from pounding.report.inputs_section import SPECTRUM_NAMES, code_parameters
 from pounding.report.print_css import FIGURE_WIDTH
 from pounding.report.snapshot import Snapshot
@@ -63,6 +63,15 @@ def report_figures(snapshot: Snapshot, units: str = "SI") -> list[ReportFigure]:
                           (distribution_figure(snapshot, units),))]
     hazard = hazard_figure(case, snapshot.seed, units)
     if hazard is not None:
+        scaled = scaled_records_figure(case)
+        if scaled is not None:
+            hazard_ = case.hazard
+            source = f" ({hazard_.source})" if hazard_.source else ""
+            shown.append(ReportFigure(
+                "The records against the design spectrum",
+                f"The 5 %-damped spectra of the {len(hazard_.records)} records{source}, scaled {hazard_.scaling}: each "
+                "record (grey), their mean (red), the design spectrum (black) and the expected spectrum of the process "
+                "the closed form takes (dashed).", (scaled,)))
         shown.append(ReportFigure("The ground motion's spectrum", _hazard_caption(snapshot), (hazard,)))
     shown.append(ReportFigure("Expected extreme force and probability of pounding against the gap", _gap_caption(snapshot, d), (plots.gap,)))
     shown.append(ReportFigure(

@@ -14,7 +14,7 @@ from pounding.hazard.sources import DesignSpectrum
 from pounding.simulation.ground_motion import ground_motion_batches
 from pounding.units import STANDARD_GRAVITY
 
-__all__ = ["SPECTRUM_RECORDS", "hazard_figure"]
+__all__ = ["SPECTRUM_RECORDS", "hazard_figure", "scaled_records_figure"]
 
 SPECTRUM_RECORDS = 20
 """Synthetic records whose mean response spectrum the report sets against a design spectrum."""
@@ -59,6 +59,41 @@ def hazard_figure(case: Case, seed: int = defaults.REPORT_SEED, units: str = "SI
                       legend_label="filter bank (the closed form's)")
         plot.line(omega, fitted.spectrum.psd(omega) / shown.length_scale**2, line_width=2, line_dash="dashed",
                   color="#ff7f0e", legend_label=f"{fitted.to_dict()['spectrum']} (a description)")
+    plot.legend.location = "top_right"
+    plot.legend.click_policy = "hide"
+    return plot
+
+
+def scaled_records_figure(case: Case):
+    """Records scaled to a design spectrum: the target over the matching range, the scaled records' mean Sa and
+    each record's, and the expected Sa of the process the closed form takes (C1-C3, of the fitted spectrum).
+    None unless the case's records were scaled to a spectrum."""
+    scaling = getattr(case.hazard, "spectrum_scaling", None)
+    if scaling is None:
+        return None
+    from bokeh.plotting import figure
+
+    from pounding.hazard.compatible_psd import random_vibration_spectrum
+
+    periods = np.asarray(scaling.periods)
+    in_g = 1.0 / STANDARD_GRAVITY
+    plot = figure(title=f"{len(case.hazard.records)} records scaled to the design spectrum ({scaling.fit})", x_axis_type="log",
+                  x_axis_label="period T [s]", y_axis_label="pseudo-acceleration Sa (5 %) [g]", output_backend="canvas",
+                  sizing_mode="stretch_width", height=320, tools="pan,wheel_zoom,box_zoom,reset,save")
+    scaled = scaling.factors[:, None] * scaling.spectra
+    for row in scaled:
+        plot.line(periods, row * in_g, color="#bbbbbb", line_width=1, legend_label="each record, as scaled")
+    plot.line(periods, np.asarray(scaling.target) * in_g, line_width=3, color="black", legend_label="design spectrum")
+    if scaling.fit == "not-below" and scaling.not_below != 1:
+        plot.line(periods, scaling.not_below * np.asarray(scaling.target) * in_g, line_dash="dotted", color="black",
+                  legend_label=f"{scaling.not_below:g} x the design spectrum")
+    plot.line(periods, scaled.mean(axis=0) * in_g, line_width=3, color="#d62728", legend_label="records' mean, as scaled")
+    # The process the closed form takes: its expected Sa (random vibration, C1-C3); it follows whatever spectrum is fitted.
+    excitation = case.excitation
+    expected = random_vibration_spectrum(excitation.spectrum, periods, excitation.duration, excitation.envelope,
+                                         excitation.cutoff_frequency)
+    plot.line(periods, expected * in_g, line_dash="dashed", color="#1f77b4", line_width=2,
+              legend_label="the closed form's process (expected Sa)")
     plot.legend.location = "top_right"
     plot.legend.click_policy = "hide"
     return plot
