@@ -302,7 +302,7 @@ def integrate(
     label : str
         Names the record in error messages.
     """
-    case, settings = check_study(case, settings, None, None)
+    case, settings = check_study(case, settings)
     time_step = finite_number("time_step", time_step, error=ArgumentError)
     if not time_step > 0:
         raise ArgumentError("time_step", f"must be > 0 s, got {quote(time_step)}")
@@ -389,7 +389,7 @@ def _integrate(case: Case, record: np.ndarray, time_step: float, initial_state, 
 def simulate_record(case: Case, seed: int = defaults.SEED, index: int = 0, settings: Settings | None = None) -> TimeHistory:
     """Full time histories of record ``index`` of the study seeded ``seed``
     (the same record ``simulate`` integrates under that index)."""
-    case, settings = check_study(case, settings, None, None)
+    case, settings = check_study(case, settings)
     _, seed, index = check_records(1, seed, index)
     check_suite_range(case, 1, index)
     _check_history("excitation.duration", samples_per_record(case), 3 * sum(b.n_storeys for b in case.buildings))

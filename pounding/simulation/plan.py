@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 from pounding import defaults
 from pounding.errors import ArgumentError, described, whole_number
-from pounding.simulation.system import Settings, check_records
+from pounding.simulation.system import Settings, check_records, check_settings
 
 __all__ = ["MonteCarloPlan", "as_plan"]
 
@@ -69,10 +69,7 @@ class MonteCarloPlan:
         else:
             _, seed, first_record = check_records(1, self.seed, self.first_record)
             records = None
-        if self.settings is None:
-            object.__setattr__(self, "settings", Settings())
-        elif not isinstance(self.settings, Settings):
-            raise ArgumentError("settings", f"must be a Settings or None, got {described(self.settings)}")
+        object.__setattr__(self, "settings", check_settings(self.settings))
         if self.progress is not None and not callable(self.progress):
             raise ArgumentError("progress", f"must be a function progress(done, total) or None, got {described(self.progress)}")
         if self.cancel is not None and not callable(getattr(self.cancel, "is_set", None)):

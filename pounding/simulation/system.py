@@ -21,7 +21,7 @@ from pounding.errors import (
 )
 from pounding.mechanics import integrator as kernel
 
-__all__ = ["Cancelled", "KernelSystem", "Settings", "check_records", "check_study", "failure", "kernel_system"]
+__all__ = ["Cancelled", "KernelSystem", "Settings", "check_records", "check_settings", "check_study", "failure", "kernel_system"]
 
 _LAST_INDEX = 2**63 - 1  # record indices are int64
 
@@ -110,17 +110,17 @@ def check_records(records, seed, first_record) -> tuple[int, int, int]:
     return records, seed, first_record
 
 
-def check_study(case, settings, progress, cancel) -> tuple[Case, Settings]:
-    """The case (a Case, a preset name or a TOML path) and the settings, checked."""
-    case = as_case(case)
+def check_settings(settings) -> Settings:
+    """``settings``, or the default ``Settings()`` for None; :class:`ArgumentError` for anything else."""
     settings = Settings() if settings is None else settings
     if not isinstance(settings, Settings):
         raise ArgumentError("settings", f"must be a Settings or None, got {described(settings)}")
-    if progress is not None and not callable(progress):
-        raise ArgumentError("progress", f"must be a function progress(done, total) or None, got {described(progress)}")
-    if cancel is not None and not callable(getattr(cancel, "is_set", None)):
-        raise ArgumentError("cancel", f"must be a threading.Event or None, got {described(cancel)}")
-    return case, settings
+    return settings
+
+
+def check_study(case, settings) -> tuple[Case, Settings]:
+    """The case (a Case, a preset name or a TOML path) and the settings, checked."""
+    return as_case(case), check_settings(settings)
 
 
 def kernel_system(case: Case, settings: Settings) -> KernelSystem:
