@@ -34,7 +34,6 @@ from timing import median_seconds  # noqa: E402 (this folder is on the path)
 from pounding import load_case, simulate
 from pounding.cli.commands import main as command_line
 from pounding.closed_form.estimator import estimate, force_versus_gap
-from pounding.closed_form.impact_damping import impact_damping
 from pounding.closed_form.linearization import linearize_pair
 from pounding.closed_form.linearization.residual import residual_response
 from pounding.closed_form.pair import LinearizedPair
@@ -84,7 +83,7 @@ def main() -> None:
 
         residual = median_seconds(lambda pair: residual_response(pair.state_space, pair.buildings, pair.contact_outputs),
                                   setup=solved_pair)
-        damping = median_seconds(lambda pair: impact_damping(pair).damped([case.contact.gap]), setup=with_residual)
+        damping = median_seconds(lambda pair: pair.impact_damping.damped([case.contact.gap]), setup=with_residual)
         pair = LinearizedPair.of(case)
         estimate(pair)  # its cached quantities filled
         reused = median_seconds(lambda: estimate(pair))
