@@ -45,6 +45,21 @@ def test_linearized_sigma_is_close_to_the_nonlinear_buildings(period_2):
     np.testing.assert_allclose(linearized, simulated, rtol=0.15)
 
 
+def test_a_motion_too_short_for_davenport_keeps_the_recommended_estimate():
+    """Where nu T <= 1 Davenport's factor (Eq. 23) is undefined: the paper's estimate says so and is None,
+    while the gap-aware count, which needs no peak factor, still gives the pounding probability and force."""
+    case = load_case("section5-T2-0.4")
+    rate = estimate(case).paper.crossing_rate
+    short = dataclasses.replace(case, excitation=dataclasses.replace(case.excitation, duration=0.8 / rate))
+    result = estimate(short)
+    assert result.paper.unavailable is not None and "Eq. 23" in result.paper.unavailable
+    assert result.paper.force_expected is None and result.paper.peak_factor is None
+    assert result.to_dict()["paper"]["unavailable"] == result.paper.unavailable
+    # the recommended estimate is there, and the shorter motion pounds less than the 20 s one
+    assert 0.0 < result.pounding_probability < estimate(case).pounding_probability
+    assert 0.0 < result.force_expected < estimate(case).force_expected
+
+
 def test_paper_chain_follows_eq23_24_and_14():
     case = load_case("section5-T2-0.4")
     result = estimate(case)

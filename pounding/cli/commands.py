@@ -198,11 +198,14 @@ def _estimate(args) -> int:
           f"   (SRSS {100 * rules['srss']:.2f} cm, ABS {100 * rules['abs']:.2f} cm, DDC {100 * rules['ddc']:.2f} cm)")
     print(f"  accuracy                  {result.measured_accuracy}")
     print("paper (Rahimi & Soltani 2016, Eq. 12-30)")
-    if paper.force_expected is None:
+    if paper.unavailable is not None:
+        print(f"  expected extreme force    n/a ({paper.unavailable})")
+    elif paper.force_expected is None:
         print("  expected extreme force    n/a (Eq. 13-14 hold for the Hertz-type laws only)")
     else:
         print(f"  expected extreme force    {force_text(paper.force_expected)}")
-    print(f"  expected extreme velocity {paper.relative_velocity_expected:.4f} m/s   (peak factor {paper.peak_factor:.3f})")
+    if paper.relative_velocity_expected is not None:
+        print(f"  expected extreme velocity {paper.relative_velocity_expected:.4f} m/s   (peak factor {paper.peak_factor:.3f})")
     print(f"  crossing rate (Eq. 24)    {paper.crossing_rate:.4f} 1/s, effective duration {paper.duration_effective:.2f} s")
     if paper.michaelov_n1 is not None:
         print(f"  equivalent sigma (Eq. 29) {paper.sigma_relative_velocity_equivalent:.4f} m/s   "

@@ -178,6 +178,7 @@ class Estimate:
                 "duration_effective": paper.duration_effective,
                 "peak_factor": paper.peak_factor,
                 "penetration_expected": paper.penetration_expected,
+                "unavailable": paper.unavailable,
                 "sigma_relative_displacement": self.response.sigma_relative_displacement,
                 "sigma_relative_velocity": self.response.sigma_relative_velocity,
             },

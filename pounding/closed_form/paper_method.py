@@ -34,30 +34,36 @@ class PaperEstimate:
     force_expected : float or None
         F_e of Eq. 14 [N]; None for the ``linear`` contact law, for which
         Eq. 13-14 (Hertz) do not apply.
-    relative_velocity_expected : float
-        Expected extreme relative velocity delta_dot_e [m/s], Eq. 23 (30).
+    relative_velocity_expected : float or None
+        Expected extreme relative velocity delta_dot_e [m/s], Eq. 23 (30); None where Davenport's factor is
+        not defined (see ``unavailable``).
     crossing_rate : float
         nu = sigma_V / (pi sigma_X) [1/s], Eq. 24.
     duration_effective : float
         T (stationary) or Michaelov's T_eq (Eq. 29) [s].
-    peak_factor : float
-        Davenport's factor of Eq. 23 / 30 [-].
+    peak_factor : float or None
+        Davenport's factor of Eq. 23 / 30 [-]; None where it is not defined: fewer than one crossing
+        expected over the duration (nu T <= 1, a strong motion shorter than a period of X).
     sigma_relative_velocity_equivalent : float or None
         sigma_eq of Eq. 29 for non-stationary motion [m/s].
     penetration_expected : float or None
         delta_e of Eq. 13 with e delta_dot_e [m].
     michaelov_n1 : float or None
         The order n1 of Eq. 29's moments for non-stationary motion [-].
+    unavailable : str or None
+        Why the paper's estimate is not defined for this case (then force_expected, the velocity, the peak
+        factor and the penetration are None); None where it is.
     """
 
     force_expected: float | None
-    relative_velocity_expected: float
+    relative_velocity_expected: float | None
     crossing_rate: float
     duration_effective: float
-    peak_factor: float
+    peak_factor: float | None
     sigma_relative_velocity_equivalent: float | None
     penetration_expected: float | None
     michaelov_n1: float | None = None
+    unavailable: str | None = None
 
 
 def check_michaelov_n1(n1) -> None:
@@ -99,6 +105,11 @@ def paper_estimate(pair, variance_method: str = defaults.PAPER_VARIANCE, michael
             raise ArgumentError("variance_method", f"must be one of {', '.join(PAPER_VARIANCE_METHODS)}, got {variance_method!r}")
         variance_eq, duration = equivalent_stationary(variance, times, n1=michaelov_n1)  # Eq. 29
         sigma = sigma_equivalent = math.sqrt(variance_eq)
+    n1 = None if excitation.stationary else float(michaelov_n1)
+    if not rate * duration > 1.0:  # Davenport's factor needs more than one crossing: the paper has no estimate here
+        return PaperEstimate(None, None, float(rate), float(duration), None, sigma_equivalent, None, n1,
+                             unavailable=f"Davenport's peak factor (Eq. 23) needs more than one crossing over the "
+                                         f"duration; {rate * duration:.2g} are expected")
     factor = davenport_peak_factor(rate, duration)  # Eq. 23 / 30
     velocity = factor * sigma
     contact = case.contact
@@ -110,5 +121,4 @@ def paper_estimate(pair, variance_method: str = defaults.PAPER_VARIANCE, michael
         separation = contact.restitution * velocity
         force = float(undamped_peak_force(contact, separation, case.reduced_mass))
         penetration = (force / contact.stiffness) ** (2.0 / 3.0)
-    n1 = None if excitation.stationary else float(michaelov_n1)
     return PaperEstimate(force, float(velocity), float(rate), float(duration), float(factor), sigma_equivalent, penetration, n1)

@@ -54,7 +54,7 @@ def result_html(
         _row("sigma of relative velocity", d.velocity(e.sigma_relative_velocity), sigma_paper),
         _row("crossing rate", f"{e.upcrossing_rate:.4g} {rate} (nu<sub>0</sub><sup>+</sup>)", f"{p.crossing_rate:.4g} {rate} (nu, Eq. 24)"),
         _row("effective duration", f"{case.excitation.duration:.4g} s", f"{p.duration_effective:.4g} s"),
-        _row("peak factor", "(over the gap: no single factor)", f"{p.peak_factor:.4g} (Davenport, Eq. 23)"),
+        _row("peak factor", "(over the gap: no single factor)", "n/a" if p.peak_factor is None else f"{p.peak_factor:.4g} (Davenport, Eq. 23)"),
         _row("expected impact velocity", d.velocity(e.relative_velocity_expected), d.velocity(p.relative_velocity_expected)),
         _row("peak penetration", "n/a", d.length(p.penetration_expected)),
         _row("peak force ratio K(e)", f"{e.peak_force_ratio:.4g} (free masses)", "1 (undamped Hertz)"),
