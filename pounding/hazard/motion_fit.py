@@ -210,10 +210,12 @@ def _bin_edges(low: float, high: float, resolution: float) -> np.ndarray:
     return np.asarray(edges)
 
 
-def mean_periodogram(segments, cutoff: float, interpolated: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def mean_periodogram(segments, cutoff: float, interpolated: bool = False,
+                     tapered: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """R3 and R4: the bins' mean frequencies, the records' mean periodogram on them, and
     the number of periodogram values each bin averages. ``interpolated``: each periodogram times
-    sinc^4(w dt / 2 pi), the PSD of the record linear between its samples, as it is integrated (S1)."""
+    sinc^4(w dt / 2 pi), the PSD of the record linear between its samples, as it is integrated (S1).
+    ``tapered=False``: no window (a whole record, which starts and ends at rest, S1)."""
     from scipy import fft
 
     durations = np.array([segment[2] for segment in segments])
@@ -221,7 +223,7 @@ def mean_periodogram(segments, cutoff: float, interpolated: bool = False) -> tup
     if not cutoff > 2.0 * low:
         shortest = segments[int(np.argmin(durations))][3]
         raise ArgumentError("cutoff_frequency", f"must exceed twice the lowest fitted frequency, {2 * low:.3g} rad/s "
-                                                f"(2 pi / the strong-motion duration of {quote(shortest, 60)}), got {cutoff:.4g}")
+                                                f"(2 pi / the {durations.min():.3g} s analysed of {quote(shortest, 60)}), got {cutoff:.4g}")
     edges = _bin_edges(low, cutoff, 2.0 * math.pi / durations.min())
     bins = edges.size - 1
     power = np.zeros(bins)
@@ -231,7 +233,7 @@ def mean_periodogram(segments, cutoff: float, interpolated: bool = False) -> tup
     for values, step, duration, _ in segments:
         n = fft.next_fast_len(values.size, real=True)
         omega = np.arange(n // 2 + 1) * (2.0 * math.pi / (n * step))
-        window = _taper(values.size)
+        window = _taper(values.size) if tapered else np.ones(values.size)
         scale = step**2 / (2.0 * math.pi * duration * np.mean(window**2))
         periodogram = np.abs(fft.rfft(values * window, n)) ** 2 * scale  # R3
         if interpolated:

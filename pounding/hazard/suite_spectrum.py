@@ -2,11 +2,14 @@
 accelerograms: a filter bank (G27) that follows the suite's mean periodogram
 over the records' own band, modulated by the suite's mean intensity in time.
 
-S1  The band. The suite's mean periodogram of the strong motion (R3-R4, pounding.hazard.motion_fit), each
-    record's times sinc^4(w dt / 2 pi): the PSD of the record linear between its samples, as it is integrated,
-    from w_low = max(2 pi 0.1, 2 pi / min D_i) rad/s to the cutoff w_c (25 Hz, or 0.8 of the coarsest
-    record's Nyquist frequency, or the case's own); it ends at the records' own low-pass:
-    w_u = the highest bin whose mean is at least BAND_FLOOR times the largest bin's.
+S1  The band. The suite's mean periodogram (R3-R4, pounding.hazard.motion_fit) of each whole record, without a
+    window (a record starts and ends at rest), times sinc^4(w dt / 2 pi): the PSD of the record linear between
+    its samples, as it is integrated; from w_low = max(2 pi 0.1, 2 pi / the shortest record's length) rad/s to
+    the cutoff w_c (25 Hz, or 0.8 of the coarsest record's Nyquist frequency, or the case's own); it ends at
+    the records' own low-pass: w_u = the highest bin whose mean is at least BAND_FLOOR times the largest bin's.
+    The whole record, not its strong motion alone: the envelope (S3-S4) carries the intensity in time, and
+    a strong motion of 2 s resolves the spectrum only every 3 rad/s and from 3 rad/s up, where flexible
+    buildings respond.
 S2  The bank: K = BANK_COMPONENT_COUNT band-pass components (G27) at centres log-spaced from w_low to w_u,
     damping BANK_DAMPING_RATIO each (C5's). Its weights c >= 0 match, in the least-squares sense relative to
     each, the suite's lambda_0 w_p^4 of OSCILLATORS 5 %-damped oscillators at w_p log-spaced over the band
@@ -21,8 +24,9 @@ S3  The mean square in time: record i shifted so that its Husid onset t_5,i (R2)
 S4  The envelope A(t) = sqrt(e(t) / max e) (1 at its peak, as Eq. 9's), and the level: the bank's G0
     scaled so that its variance below w_u on the records' synthesis grid is max e; then
     A(t)^2 sigma^2 = e(t): the process's mean square follows the records' at every instant.
-S5  The duration: where int_0^t e reaches DURATION_SHARE of its total (the records' last motion counts
-    little, and the covariance from rest costs time in proportion).
+S5  The duration: to the end of the longest record, aligned as in S3: the Monte Carlo integrates each record to
+    its end, and the buildings' free vibration after the strong motion can still pound (a strong motion of
+    2 s under a building of 0.5 s: half the records' pounding, docs/accuracy.md).
 
 The records are sampled as they are: the process's time step is the coarsest record's, and its expected
 PGA the largest of its samples (P5-P6). Fitted: none of S1-S5's constants was tuned on pounding forces.
@@ -47,7 +51,6 @@ __all__ = [
     "BAND_FLOOR",
     "BANK_COMPONENT_COUNT",
     "BANK_DAMPING_RATIO",
-    "DURATION_SHARE",
     "ENVELOPE_STEP",
     "OSCILLATORS",
     "SMOOTHING",
@@ -73,8 +76,11 @@ ENVELOPE_STEP = 0.05
 """S3: the grid of e(t) and of the envelope [s]."""
 SMOOTHING = 1.0
 """S3: the moving average's span [s]: a few cycles of the ground motion, short beside the strong motion."""
-DURATION_SHARE = 0.99
-"""S5: the share of int e dt the process lasts for."""
+
+
+def _interpolated_square(a: np.ndarray) -> np.ndarray:
+    """S3: the mean of a^2 over each time step, a linear between its samples [m^2/s^4]."""
+    return (a[1:] ** 2 + a[1:] * a[:-1] + a[:-1] ** 2) / 3.0
 
 
 def mean_square_history(records: Sequence[Accelerogram], onsets) -> tuple[np.ndarray, np.ndarray]:
@@ -86,10 +92,9 @@ def mean_square_history(records: Sequence[Accelerogram], onsets) -> tuple[np.nda
     total = np.zeros(times.size)
     for onset, record in zip(onsets, records):
         own = times - lead + onset  # the record's own time at each instant
-        a = record.acceleration
-        square = (a[1:] ** 2 + a[1:] * a[:-1] + a[:-1] ** 2) / 3.0  # mean of a^2 over each step, a linear in it
+        square = _interpolated_square(record.acceleration)
         middles = (np.arange(square.size) + 0.5) * record.time_step
-        inside = (own >= 0.0) & (own <= a.size * record.time_step - record.time_step)
+        inside = (own >= 0.0) & (own <= square.size * record.time_step)
         total[inside] += np.interp(own[inside], middles, square)
     width = max(round(SMOOTHING / ENVELOPE_STEP), 1)
     kernel = np.ones(width) / width
@@ -120,8 +125,8 @@ class SuiteSpectrum:
     misfit : float
         rms relative misfit of the oscillators' variances and of the variance (S2) [-].
     peak_to_mean : float
-        The bank's G0 over the G0 fitted to the periodogram (S4): the envelope's peak intensity over the strong
-        motion's mean [-]; ``bank.psd / peak_to_mean`` is the bank at the periodogram's level.
+        The envelope's peak intensity, max e (S4), over the records' mean square in their strong motion (R2)
+        [-]; ``bank.psd / peak_to_mean`` is the bank at the strong motion's level (1 for the stationary form).
     """
 
     bank: FilterBank
@@ -224,31 +229,34 @@ def _check(records, cutoff_frequency) -> float:
 
 def fit_suite_spectrum(records: Sequence[Accelerogram], cutoff_frequency: float, modulated: bool = True) -> SuiteSpectrum:
     """S1-S5: the bank and envelope of ``records`` below ``cutoff_frequency`` [rad/s]. ``modulated=False``
-    gives the stationary form: the bank at the periodogram's level over the mean significant duration."""
+    gives the stationary form: the bank at the strong motion's mean square (R2) over the mean significant
+    duration."""
     cutoff = _check(records, cutoff_frequency)
-    segments, onsets = [], []
-    for record in records:
-        values, duration = strong_motion(record)
-        segments.append((values, record.time_step, duration, record.name))
-        onsets.append(significant_duration(record)[0])
-    omega, mean, _ = mean_periodogram(segments, cutoff, interpolated=True)
+    segments = [(record.acceleration, record.time_step, record.duration, record.name) for record in records]
+    omega, mean, _ = mean_periodogram(segments, cutoff, interpolated=True, tapered=False)
     if np.count_nonzero(mean > 0) < 8:
-        raise ArgumentError("records", "the suite's strong motion has power in fewer than 8 frequency bins below the cutoff")
+        raise ArgumentError("records", "the records have power in fewer than 8 frequency bins below the cutoff")
     high = _band(omega, mean, cutoff)
     low = float(omega[0])
     bank, misfit = _bank(omega, mean, low, high)
     step = max(record.time_step for record in records)
+    onsets, durations, strong_squares = [], [], []
+    for record in records:
+        values, duration = strong_motion(record)
+        onsets.append(significant_duration(record)[0])
+        durations.append(duration)
+        strong_squares.append(float(np.mean(_interpolated_square(values))))
     if not modulated:
-        duration = float(np.mean([segment[2] for segment in segments]))
-        return SuiteSpectrum(bank, None, duration, high, cutoff, step, omega, mean, misfit)
+        duration = float(np.mean(durations))
+        unit = Excitation(dataclasses.replace(bank, G0=1.0), duration, None, time_step=step, cutoff_frequency=high)
+        level = float(np.mean(strong_squares)) / unit.represented_variance()
+        return SuiteSpectrum(dataclasses.replace(bank, G0=level), None, duration, high, cutoff, step, omega, mean, misfit)
     times, square = mean_square_history(records, onsets)
-    cumulative = np.cumsum(square)
-    end = int(np.searchsorted(cumulative, DURATION_SHARE * cumulative[-1]))
-    end = min(max(end, math.ceil(10 * step / ENVELOPE_STEP)), times.size - 1)  # at least 10 time steps
+    end = max(int(np.flatnonzero(square > 0.0)[-1]), math.ceil(10 * step / ENVELOPE_STEP))  # at least 10 time steps
     times, square = times[: end + 1], square[: end + 1]
     envelope = TabulatedEnvelope(tuple(times), tuple(np.sqrt(square / square.max())))
     duration = float(times[-1])
     unit = Excitation(dataclasses.replace(bank, G0=1.0), duration, None, time_step=step, cutoff_frequency=high)
     level = float(square.max()) / unit.represented_variance()  # S4
     return SuiteSpectrum(dataclasses.replace(bank, G0=level), envelope, duration, high, cutoff, step, omega, mean, misfit,
-                         level / bank.G0)
+                         float(square.max()) / float(np.mean(strong_squares)))
