@@ -126,26 +126,48 @@ def rows(records: int = RECORDS, suite_names=None, pair_names=None, pga_each: bo
             })
             for pair_name, pair in grid.items():
                 case = dataclasses.replace(base, buildings=pair.buildings, contact=pair.contact, name=f"{name}, {pair_name}")
-                study = simulate(case, records=len(motions), seed=seed)
-                process = simulate(dataclasses.replace(case, hazard=None), records=len(motions), seed=seed)
-                mc = study.force_max_mean
-                row = {"suite": name, "pair": pair_name, "monte_carlo": mc, "std_error": study.force_max_std_error,
-                       "pounding_fraction": study.pounding_fraction, "fitted_process_monte_carlo": process.force_max_mean,
-                       "fitted_process_fraction": process.pounding_fraction, "regime": None, "gap_over_sigma": None,
-                       "closed_form": None, "force_error": None, "pounding_probability": None, "closed_form_error": None}
-                try:
-                    closed = estimate(case)
-                except InputError as error:  # the closed form refuses the case: say why, keep the Monte Carlo
-                    row["closed_form_error"] = str(error)
-                else:
-                    row.update(regime=closed.accuracy_regime, gap_over_sigma=case.contact.gap / closed.sigma_relative_displacement,
-                               closed_form=closed.force_expected, pounding_probability=closed.pounding_probability,
-                               force_error=closed.force_expected / mc - 1.0 if mc > 0 else None)
-                case_rows.append(row)
+                case_rows.append({"suite": name, "pair": pair_name, **compare(case, len(motions), seed)})
     return suite_rows, case_rows
 
 
-def _commit() -> str:
+def compare(case, records: int, seed: int = 11, fitted_process: bool = True) -> dict:
+    """The closed form against Monte Carlo over the ``records`` records of the recorded ``case``, each once: the
+    Monte Carlo mean F_max [N], its standard error and the fraction that pound; with ``fitted_process``, Monte
+    Carlo over as many records synthesized from the process the closed form takes; the closed form's regime,
+    gap / sigma_X, E[F_max] [N], its error and its pounding probability, or (``closed_form_error``) why it
+    refused the case (InputError), the Monte Carlo kept."""
+    study = simulate(case, records=records, seed=seed)
+    mc = study.force_max_mean
+    row = {"monte_carlo": mc, "std_error": study.force_max_std_error, "pounding_fraction": study.pounding_fraction}
+    if fitted_process:
+        process = simulate(dataclasses.replace(case, hazard=None), records=records, seed=seed)
+        row.update(fitted_process_monte_carlo=process.force_max_mean, fitted_process_fraction=process.pounding_fraction)
+    row.update(regime=None, gap_over_sigma=None, closed_form=None, force_error=None, pounding_probability=None,
+               closed_form_error=None)
+    try:
+        closed = estimate(case)
+    except InputError as error:  # the closed form refuses the case: say why, keep the Monte Carlo
+        row["closed_form_error"] = str(error)
+    else:
+        row.update(regime=closed.accuracy_regime, gap_over_sigma=case.contact.gap / closed.sigma_relative_displacement,
+                   closed_form=closed.force_expected, pounding_probability=closed.pounding_probability,
+                   force_error=closed.force_expected / mc - 1.0 if mc > 0 else None)
+    return row
+
+
+def summary_cells(case_rows) -> str:
+    """The cells "E[F_max] within 10 % | median |error| | range | probability within 0.10 | largest |difference|"
+    over ``case_rows`` (rows of :func:`compare`), those the closed form refused left out."""
+    mine = [r for r in case_rows if r["closed_form"] is not None]
+    errors = np.array([r["force_error"] for r in mine if r["force_error"] is not None])
+    differences = np.abs([r["pounding_probability"] - r["pounding_fraction"] for r in mine])
+    force = (f"{int(np.sum(np.abs(errors) <= 0.10))} of {errors.size} | {np.median(np.abs(errors)):.1%} | "
+             f"{errors.min():+.0%} to {errors.max():+.0%}") if errors.size else "- | - | -"
+    probability = f"{int(np.sum(differences <= 0.10))} of {differences.size} | {differences.max():.2f}" if differences.size else "- | -"
+    return f"{force} | {probability}"
+
+
+def commit() -> str:
     try:
         return subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
                               cwd=Path(__file__).parent, check=True).stdout.strip()
@@ -153,14 +175,14 @@ def _commit() -> str:
         return "unknown"
 
 
-def _spectrum(fitted: dict) -> str:
+def describe_spectrum(fitted: dict) -> str:
     text = f"{fitted['spectrum']}: omega_g {fitted['omega_g']:.1f} rad/s, xi_g {fitted['xi_g']:.2f}"
     if "omega_f" in fitted:
         text += f", omega_f {fitted['omega_f']:.2f} rad/s, xi_f {fitted['xi_f']:.2f}"
     return text + f", D {fitted['duration']:.1f} s"
 
 
-def _ratio(value: float, reference: float) -> str:
+def ratio_text(value: float, reference: float) -> str:
     return "n/a" if reference == 0 else f"{value / reference - 1.0:+.1%}"
 
 
@@ -170,7 +192,7 @@ def print_tables(suite_rows, case_rows, records: int, pga_each: bool) -> None:
     print("| suite | generator | seed | dt (s) | fitted spectrum | records' mean PGA (g) | fitted E[PGA] (g) | ratio |")
     print("|---|---|---|---|---|---|---|---|")
     for s in suite_rows:
-        print(f"| {s['suite']} | {s['generator']} | {s['seed']} | {s['time_step']:g} | {_spectrum(s['fitted'])} | "
+        print(f"| {s['suite']} | {s['generator']} | {s['seed']} | {s['time_step']:g} | {describe_spectrum(s['fitted'])} | "
               f"{s['records_mean_pga']:.3f} | {s['fitted_expected_pga']:.3f} | {s['fitted_expected_pga'] / s['records_mean_pga']:.2f} |")
     print("\nMonte Carlo over the records; the closed form (kN, its error, its pounding probability and that minus "
           "the records' fraction); Monte Carlo over as many records synthesized from the fitted process (its error "
@@ -184,26 +206,20 @@ def print_tables(suite_rows, case_rows, records: int, pga_each: bool) -> None:
         if r["closed_form"] is None:
             refused.append(r)
             print(f"| {r['suite']} | {r['pair']} | refused ({len(refused)}) | - | {r['monte_carlo'] / 1e3:.1f} | {relative} | "
-                  f"{r['pounding_fraction']:.2f} | - | - | - | - | {_ratio(r['fitted_process_monte_carlo'], r['monte_carlo'])} | "
+                  f"{r['pounding_fraction']:.2f} | - | - | - | - | {ratio_text(r['fitted_process_monte_carlo'], r['monte_carlo'])} | "
                   f"{r['fitted_process_fraction']:.2f} |")
             continue
         error = "n/a" if r["force_error"] is None else f"{r['force_error']:+.1%}"
         print(f"| {r['suite']} | {r['pair']} | {r['regime']} | {r['gap_over_sigma']:.2f} | {r['monte_carlo'] / 1e3:.1f} | "
               f"{relative} | {r['pounding_fraction']:.2f} | {r['closed_form'] / 1e3:.1f} | {error} | "
               f"{r['pounding_probability']:.2f} | {r['pounding_probability'] - r['pounding_fraction']:+.2f} | "
-              f"{_ratio(r['fitted_process_monte_carlo'], r['monte_carlo'])} | {r['fitted_process_fraction']:.2f} |")
+              f"{ratio_text(r['fitted_process_monte_carlo'], r['monte_carlo'])} | {r['fitted_process_fraction']:.2f} |")
     for number, r in enumerate(refused, 1):
         print(f"\n({number}) the closed form refused {r['suite']}, {r['pair']}: {r['closed_form_error']}")
     print("\n| suite | E[F_max] within 10 % | median \\|error\\| | range | probability within 0.10 | largest \\|difference\\| |")
     print("|---|---|---|---|---|---|")
     for name in dict.fromkeys(r["suite"] for r in case_rows):
-        mine = [r for r in case_rows if r["suite"] == name and r["closed_form"] is not None]
-        errors = np.array([r["force_error"] for r in mine if r["force_error"] is not None])
-        differences = np.abs([r["pounding_probability"] - r["pounding_fraction"] for r in mine])
-        force = (f"{int(np.sum(np.abs(errors) <= 0.10))} of {errors.size} | {np.median(np.abs(errors)):.1%} | "
-                 f"{errors.min():+.0%} to {errors.max():+.0%}") if errors.size else "- | - | -"
-        probability = f"{int(np.sum(differences <= 0.10))} of {differences.size} | {differences.max():.2f}" if differences.size else "- | -"
-        print(f"| {name} | {force} | {probability} |")
+        print(f"| {name} | {summary_cells([r for r in case_rows if r['suite'] == name])} |")
 
 
 def main(records: int = RECORDS, suites=None, pairs=None, pga_each: bool = False, json_path=None) -> None:
@@ -212,7 +228,7 @@ def main(records: int = RECORDS, suites=None, pairs=None, pga_each: bool = False
     suite_rows, case_rows = rows(records, suites, pairs, pga_each)
     print_tables(suite_rows, case_rows, records, pga_each)
     if json_path is not None:
-        document = {"written_by": f"validation.suite_accuracy at {_commit()}", "records": records,
+        document = {"written_by": f"validation.suite_accuracy at {commit()}", "records": records,
                     "scaling": "pga each" if pga_each else "suite mean pga", "pga_g": PGA,
                     "suites": suite_rows, "cases": case_rows}
         Path(json_path).write_text(json.dumps(document, indent=1) + "\n")
