@@ -8,7 +8,7 @@ import textwrap
 import numpy as np
 import pytest
 
-from pounding import CaseError, load_case, simulate
+from pounding import CaseError, design_gap, load_case, simulate
 from pounding.cli.commands import main
 from pounding.hazard.accelerograms import Accelerogram, read_accelerogram, write_at2
 from pounding.hazard.excitation import ground_accelerations
@@ -47,6 +47,17 @@ def test_simulating_the_files_integrates_the_records_as_synthesized(suite):
     # the files hold 8 significant digits: the forces agree to about that
     np.testing.assert_allclose(from_files.force_max, synthetic.force_max, rtol=1e-5)
     assert from_files.to_dict()["seed"] is None and len(from_files.to_dict()["record_files"]) == 6
+
+
+def test_the_design_gap_of_a_suite_takes_its_records_each_once(suite):
+    """Without a record count the design gap of a recorded case is that of its own records (the default 400
+    synthetic records do not exist there): the 95th percentile of their free peaks, the same as the synthetic
+    records they were written from give."""
+    folder, _ = suite
+    from_files = design_gap(load_case(folder / "case.toml"), 0.95)
+    synthetic = design_gap(PRESET, 0.95, records=6, seed=5)
+    assert len(from_files.peaks) == 6
+    assert from_files.gap == pytest.approx(synthetic.gap, rel=1e-5)
 
 
 def test_the_closed_form_takes_the_fitted_spectrum(suite, capsys):

@@ -226,7 +226,7 @@ def hazard_warnings(case) -> tuple[str, ...]:
     """The warnings of a recorded case on the spectrum fitted to its records: the closed form's process off the
     records' mean Sa or PGA by more than 10 % (S8, :mod:`pounding.hazard.fit_quality`), a Kanai-Tajimi or
     Clough-Penzien description that stops on a bound of its range (R5), and the measured error of the closed
-    form's gap on recorded suites (unsafe by up to 18 % on yielding pairs: the gap is the Monte Carlo's to give)."""
+    form's gap on recorded suites (unsafe on yielding pairs, accuracy.json: the gap is the Monte Carlo's to give)."""
     if not case.recorded:
         return ()
     from pounding.case.engineering import fundamental_periods

@@ -210,16 +210,17 @@ def _bin_edges(low: float, high: float, resolution: float) -> np.ndarray:
     return np.asarray(edges)
 
 
-def mean_periodogram(segments, cutoff: float, interpolated: bool = False,
-                     tapered: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def mean_periodogram(segments, cutoff: float, interpolated: bool = False, tapered: bool = True,
+                     lowest: float = LOWEST_FREQUENCY) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """R3 and R4: the bins' mean frequencies, the records' mean periodogram on them, and
     the number of periodogram values each bin averages. ``interpolated``: each periodogram times
     sinc^4(w dt / 2 pi), the PSD of the record linear between its samples, as it is integrated (S1).
-    ``tapered=False``: no window (a whole record, which starts and ends at rest, S1)."""
+    ``tapered=False``: no window (a whole record, which starts and ends at rest, S1). The bins start at
+    max(``lowest``, 2 pi / the shortest segment) [rad/s]."""
     from scipy import fft
 
     durations = np.array([segment[2] for segment in segments])
-    low = max(LOWEST_FREQUENCY, 2.0 * math.pi / durations.min())
+    low = max(lowest, 2.0 * math.pi / durations.min())
     if not cutoff > 2.0 * low:
         shortest = segments[int(np.argmin(durations))][3]
         raise ArgumentError("cutoff_frequency", f"must exceed twice the lowest fitted frequency, {2 * low:.3g} rad/s "

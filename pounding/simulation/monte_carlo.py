@@ -218,15 +218,16 @@ def records_for_bound(target_probability: float) -> int:
 def design_gap(case: Case, target_probability: float = defaults.TARGET_PROBABILITY, plan: MonteCarloPlan | None = None,
                **options) -> DesignGap:
     """The gap giving ``target_probability`` of no pounding, from the free
-    motion of the plan's records (``defaults.DESIGN_GAP_RECORDS`` when it names none; the case's gap is not
-    used). ``plan`` and ``**options`` as :func:`simulate`'s, from record 0.
+    motion of the plan's records (when it names none: a recorded suite's records, each once, or
+    ``defaults.DESIGN_GAP_RECORDS``; the case's gap is not used). ``plan`` and ``**options`` as
+    :func:`simulate`'s, from record 0.
 
     The records are those :func:`simulate` integrates for the same ``seed``;
     at the gap returned, :func:`simulate` finds the same records pounding.
     """
     target_probability = check_probability(target_probability)
-    plan = as_plan(plan, options).with_records(defaults.DESIGN_GAP_RECORDS)
     case = as_case(case)
+    plan = as_plan(plan, options).with_records(suite_size(case) or defaults.DESIGN_GAP_RECORDS)
     records, seed, settings = plan.records, plan.seed, plan.settings
     free = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=2.0 * settings.displacement_limit))
     result = simulate(free, dataclasses.replace(plan, first_record=0))
