@@ -4,13 +4,20 @@ The verdict is checked both ways on cases whose closed-form error docs/accuracy.
 closed form is known to be off, not flagged where it is known to be right; and the force the tool stands behind is
 within 10 % of a 2,000-record Monte Carlo of other records (seed 7) in three regimes."""
 
+import json
 import math
 import re
+import textwrap
 
+import numpy as np
 import pytest
 
 from pounding import ArgumentError, defaults, load_case, simulate
+from pounding.cli.commands import main
 from pounding.closed_form.estimator import estimate
+from pounding.hazard.accelerograms import Accelerogram, write_at2
+from pounding.hazard.excitation import ground_accelerations
+from pounding.presets import preset_text
 from pounding.simulation.monte_carlo import design_gap
 from pounding.studies.check import EstimateCheck, check_estimate, unpounded_bound
 from pounding.studies.paper_tables import varied_case
@@ -145,3 +152,61 @@ def test_the_verdict_is_one_sentence_with_units_within_200_characters():
     assert _unitless(force) == [] and force.count(" MN") == 5 and len(force) <= 200
     assert "does not agree: 0.3250 MN stands" in force and "38 % under" in force
     assert gap.endswith("the closed form's 23.96 cm falls short: 24.10 cm stands.") and len(gap) <= 200
+
+
+# --- the command line --------------------------------------------------------------------------------------------
+
+
+def test_estimate_check_json_has_the_check_and_the_answers_in_si(capsys):
+    assert main(["estimate", "section5-T2-0.4", "--check", "30", "--seed", "2", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    check = out["check"]
+    assert set(check) >= {"records", "seed", "force_max_mean", "force_max_confidence_interval", "force_max_quantiles",
+                          "pounding_fraction", "required_gap", "agrees", "units"}
+    assert (check["records"], check["seed"]) == (30, 2) and check["units"] == {"force": "N", "length": "m"}
+    expected = check_estimate(estimate("section5-T2-0.4"), 30, seed=2)
+    assert check["force_max_mean"] == pytest.approx(expected.force_max_mean, rel=1e-12)
+    assert out["force_answer"] == pytest.approx(expected.force_answer, rel=1e-12)
+    assert out["answer_source"] in ("closed form", "monte carlo") and out["gap_source"] in ("closed form", "monte carlo")
+    assert out["gap_answer"] == max(out["required_gap"], check["required_gap"])
+    assert out["units"]["force"] == "N" and out["units"]["length"] == "m"
+
+
+def test_estimate_check_prints_the_verdict_after_the_closed_form(capsys):
+    assert main(["estimate", "section5-T2-0.4", "--check", "20"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    force, gap = lines[-2:]
+    assert force.startswith("Monte Carlo check (20 records, seed 0): ") and len(force) <= 200
+    assert _unitless(force) == [] and force.count(" MN") >= 4 and ("agrees" in force or "does not agree" in force)
+    assert gap.startswith("Monte Carlo gap for 95 % no pounding") and _unitless(gap) == [] and gap.count(" cm") >= 2
+    assert main(["estimate", "section5-T2-0.4"]) == 0
+    assert "Monte Carlo check" not in capsys.readouterr().out  # without --check: the closed form alone
+
+
+@pytest.mark.parametrize("args, flag", [(["--check", "0"], "--check"), (["--check", "-4"], "--check"),
+                                        (["--check", "many"], "--check"), (["--seed", "3"], "--seed")])
+def test_a_bad_check_is_refused_with_exit_2_naming_the_option(capsys, args, flag):
+    try:
+        status = main(["estimate", "section5-T2-0.4", *args])
+    except SystemExit as exit:  # argparse's own refusal
+        status = exit.code
+    assert status == 2
+    error = capsys.readouterr().err
+    assert flag in error and len(error.strip().splitlines()) == 1
+
+
+def test_a_recorded_suite_checks_on_its_own_records_each_once(tmp_path, capsys):
+    text = preset_text("section5-T2-0.4")
+    start, end = text.index("[excitation]"), text.index("[[buildings]]")
+    (tmp_path / "motions").mkdir()
+    excitation = load_case("section5-T2-0.4").excitation
+    for index, record in enumerate(ground_accelerations(excitation, 5, range(6))):
+        write_at2(tmp_path / "motions" / f"m{index}.AT2", Accelerogram(f"m{index}", excitation.time_step, record))
+    path = tmp_path / "case.toml"
+    path.write_text(text[:start] + textwrap.dedent('[excitation]\nrecords = ["motions/*.AT2"]\n') + "\n" + text[end:])
+    check = check_estimate(estimate(path))
+    assert (check.records, check.seed) == (6, None)
+    np.testing.assert_allclose(check.force_max_mean, simulate(path).force_max_mean, rtol=1e-12)
+    assert main(["estimate", str(path), "--check", "50", "--json"]) == 0
+    captured = capsys.readouterr()
+    assert json.loads(captured.out)["check"]["records"] == 6 and "do not apply to recorded motions" in captured.err
