@@ -157,15 +157,22 @@ def _estimate(args) -> int:
     from pounding.cli.hazard import engineering_lines
     from pounding.closed_form.estimator import estimate
 
+    if args.seed is not None and args.check is None:
+        from pounding.errors import ArgumentError
+
+        raise ArgumentError("seed", "is the seed of the Monte Carlo check: give it with --check")
     case = load_case(args.case)
     capacity = _capacity(args)
     result = estimate(case, target_probability=args.target_probability, paper_variance=args.paper_variance,
                       michaelov_n1=args.michaelov_n1)
+    check = None if args.check is None else _check(case, result, args)
     if args.json:
         out = result.to_dict()
         if capacity is not None:
             out["capacity"] = capacity
             out["probability_exceeding"] = result.probability_exceeding(capacity)
+        if check is not None:
+            out.update(check=check.to_dict(), **check.answers())
         print(json.dumps(out))
         return 0
     paper = result.paper
@@ -212,7 +219,27 @@ def _estimate(args) -> int:
               f"(Michaelov's n1 = {paper.michaelov_n1:g}, sigma_V(t) by {args.paper_variance})")
     for warning in result.warnings:
         print(f"warning: {warning}")
+    if check is not None:
+        for line in check.sentences(force_text, lambda metres: f"{100 * metres:.2f} cm"):
+            print(line)
     return 0
+
+
+def _check(case, result, args):
+    """``estimate --check [N]``: the Monte Carlo of the same case (:func:`~pounding.studies.check.check_estimate`), its
+    progress drawn; a recorded suite runs each of its records once, whatever N and ``--seed`` say (a note says so)."""
+    from pounding.cli.parser import ADAPTIVE
+    from pounding.simulation.plan import MonteCarloPlan
+    from pounding.studies.check import check_estimate
+
+    records = None if args.check == ADAPTIVE else args.check
+    if case.recorded and (records is not None or args.seed is not None):
+        print(f"pounding estimate: note: N and --seed of --check do not apply to recorded motions: each of the "
+              f"{len(case.hazard.records)} is integrated once", file=sys.stderr)
+        records = None
+    seed = defaults.SEED if args.seed is None else args.seed
+    with progress_bar() as progress:
+        return check_estimate(result, MonteCarloPlan(records, seed, progress=progress))
 
 
 def _accuracy(args) -> int:

@@ -18,13 +18,16 @@ from pounding.cli.arguments import (
     whole_number_type,
 )
 
-__all__ = ["EXIT_BAD_INPUT", "error_line", "option_for", "parser"]
+__all__ = ["ADAPTIVE", "EXIT_BAD_INPUT", "error_line", "option_for", "parser"]
 
 EXIT_BAD_INPUT = 2
+ADAPTIVE = 0
+"""``estimate --check`` given without N (a typed N is at least 1): as many records as the precision asks."""
 
 _EPILOG = """examples:
   pounding cases
   pounding estimate section5-T2-0.4
+  pounding estimate section5-T2-0.4 --check
   pounding simulate section5-T2-0.4 --records 300 --seed 1
   pounding simulate section5-T2-0.4 --design-gap 0.95 --records 1000
   pounding validate --records 300
@@ -100,8 +103,12 @@ def parser() -> argparse.ArgumentParser:
         help="closed-form expected extreme pounding force (both estimators)",
         description="Expected extreme pounding force without time histories: this project's gap-aware estimator "
         "and the paper's method (Rahimi & Soltani 2016, Eq. 12-30) side by side, with the pounding probability and "
-        "the gap needed for a target probability of no pounding.",
-        epilog="examples:\n  pounding estimate section5-T2-0.4\n  pounding estimate case.toml --json --target-probability 0.99",
+        "the gap needed for a target probability of no pounding; with --check, the Monte Carlo of the same case beside "
+        "them, whether the closed form agrees with it, and the force and gap the tool stands behind.",
+        epilog="examples:\n  pounding estimate section5-T2-0.4\n  pounding estimate case.toml --json --target-probability 0.99\n"
+        f"  pounding estimate section5-T2-0.4 --check            (records until the mean is known within "
+        f"{100 * defaults.CHECK_PRECISION:g} %)\n"
+        "  pounding estimate section5-T2-0.4 --check 300 --seed 1 --json",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     estimate.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
@@ -119,6 +126,13 @@ def parser() -> argparse.ArgumentParser:
     estimate.add_argument("--units", choices=("SI", "kgf-cm-s"), default="SI",
                           help="units of --capacity and of the forces printed: N (kN, MN) or kgf (default SI); --json is always SI")
     estimate.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    estimate.add_argument("--check", type=record_count, nargs="?", const=ADAPTIVE, default=None, metavar="N",
+                          help="also run the Monte Carlo of the same case on N records (without N: until the 95 %% interval "
+                          f"of the mean is within +-{100 * defaults.CHECK_PRECISION:g} %%, at most {defaults.CHECK_MAX_RECORDS}; "
+                          "a recorded suite: each of its records once) and say whether the closed form agrees with it "
+                          f"(inside the interval or within {100 * defaults.CHECK_TOLERANCE:g} %%) and which force and gap stand")
+    estimate.add_argument("--seed", type=_non_negative_int, default=None,
+                          help=f"seed of the --check's records (default {defaults.SEED})")
 
     records = commands.add_parser(
         "records",

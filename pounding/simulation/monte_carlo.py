@@ -53,6 +53,7 @@ __all__ = [
     "SimulationResult",
     "TimeHistory",
     "design_gap",
+    "gap_from_peaks",
     "integrate",
     "records_for_bound",
     "simulate",
@@ -233,11 +234,19 @@ def design_gap(case: Case, target_probability: float = defaults.TARGET_PROBABILI
     result = simulate(free, dataclasses.replace(plan, first_record=0))
     peaks = result.relative_displacement_max
     ordered = np.sort(peaks)
-    rank = max(1, math.ceil(target_probability * records - 1e-9))  # at most records - rank pound at ordered[rank - 1]
     # P(ordered[j - 1] >= true gap) = P(Binomial(records, p) <= j - 1); the first j where that reaches 0.9.
     confident = np.flatnonzero(bdtr(np.arange(records), records, target_probability) >= 0.9)
     upper = float(ordered[confident[0]]) if confident.size else math.inf
-    return DesignGap(float(ordered[rank - 1]), upper, float(target_probability), peaks, seed)
+    return DesignGap(gap_from_peaks(peaks, target_probability), upper, float(target_probability), peaks, seed)
+
+
+def gap_from_peaks(peaks, target_probability: float) -> float:
+    """The smallest of the records' free peaks [m] at which at most 1 - ``target_probability`` of them pound: the
+    order statistic of rank ceil(target_probability x records) (:attr:`DesignGap.gap`). A peak known only to lie
+    beyond some gap may be given as inf: the gap is then inf if it depends on one."""
+    ordered = np.sort(np.asarray(peaks, dtype=float))
+    rank = max(1, math.ceil(target_probability * ordered.size - 1e-9))  # at most records - rank pound at ordered[rank - 1]
+    return float(ordered[rank - 1])
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,306 @@
+"""A verdict beside every number (issue 32): a closed-form estimate checked against a Monte Carlo study of the same
+case, and the numbers the tool stands behind.
+
+:func:`check_estimate` runs the records of the case (:func:`~pounding.simulation.monte_carlo.simulate`) and gives an
+:class:`EstimateCheck`: the records' mean F_max with its 95 % interval, their fractiles of F_max, the fraction that
+pounds and their gap for the estimate's target probability of no pounding; whether the closed form agrees; and the
+force and gap to quote:
+
+- **the force**: the closed form's E[F_max] where it agrees, otherwise the records' mean. It agrees when it lies in
+  the 95 % interval of the mean or within ``defaults.CHECK_TOLERANCE`` (10 %) of the mean. Where no record pounded
+  (mean 0) it agrees when its probability of pounding is no larger than the records allow: 0 pounding records of n
+  rule out, at 95 % confidence, any probability above 1 - 0.05^(1/n) (3.0 % at n = 100).
+- **the gap**: the closed form's gap for the target (G22) unless the records' own is larger (the safe side). The
+  records' gap is that of :func:`~pounding.simulation.monte_carlo.design_gap`: the order statistic of the records'
+  free peaks of X = x1 - x2 toward contact. Until its first contact a record moves freely, so a record that never
+  touched has its free peak in the study with contact already; a record that touched has a free peak beyond the
+  case's gap. The records' gap therefore comes from the study with contact alone when the order statistic falls
+  among the records that never touched (pounding rare at the case's gap); otherwise the same records are run once
+  more without contact.
+
+How many records: the plan's count; a recorded suite's records, each once, when the plan names none; otherwise as many
+as the precision asks: ``defaults.CHECK_FIRST_RECORDS`` (50) first, then chunks sized from the interval so far, each
+record run once (``first_record``), until the 95 % interval of the mean is within ``defaults.CHECK_PRECISION`` (5 %)
+of it either side, or ``defaults.CHECK_MAX_RECORDS`` (400) records. If no record pounds, the study stops at
+``defaults.CHECK_UNPOUNDED_RECORDS`` (100).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import numbers
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from pounding import defaults
+from pounding.closed_form.estimator import Estimate
+from pounding.errors import ArgumentError, described
+from pounding.simulation.ground_motion import suite_size
+from pounding.simulation.monte_carlo import design_gap, gap_from_peaks, simulate
+from pounding.simulation.plan import MonteCarloPlan, as_plan
+from pounding.simulation.result import SimulationResult
+
+__all__ = ["EstimateCheck", "check_estimate", "unpounded_bound"]
+
+_SMALLEST_CHUNK = 25
+"""Fewest records of a chunk after the first, where the interval asks for only a few more."""
+_MARGIN = 1.1
+"""The records a chunk aims at, over those the interval so far projects (its half-width falling as 1 / sqrt(n)):
+enough that one more chunk usually reaches the precision."""
+
+
+@dataclass(frozen=True)
+class EstimateCheck:
+    """A closed-form estimate against a Monte Carlo study of the same case (:func:`check_estimate`).
+
+    Attributes
+    ----------
+    records : int
+        Records of the study.
+    seed : int or None
+        Seed of the synthetic records; None for a recorded suite.
+    force_max_mean : float
+        The records' mean F_max [N] (0 counted for a record without impact).
+    force_max_confidence_interval : tuple of float
+        95 % interval of that mean (Student t) [N]; (-inf, inf) from one record.
+    force_max_quantiles : dict
+        The records' fractiles of F_max [N], keyed as ``defaults.FORCE_QUANTILES``.
+    pounding_fraction : float
+        Fraction of the records that pounded [-].
+    required_gap : float
+        The records' gap for ``target_probability`` of no pounding [m] (:func:`~pounding.simulation.monte_carlo.design_gap`).
+    agrees : bool
+        Whether the closed form's E[F_max] agrees with the records (the module's docstring says when).
+    closed_form_force : float
+        The closed form's E[F_max] [N].
+    closed_form_gap : float
+        The closed form's gap for ``target_probability`` of no pounding (G22) [m].
+    closed_form_pounding_probability : float
+        The closed form's probability of pounding (G21) [-].
+    target_probability : float
+        Probability of no pounding both gaps are for [-].
+    """
+
+    records: int
+    seed: int | None
+    force_max_mean: float
+    force_max_confidence_interval: tuple[float, float]
+    force_max_quantiles: dict
+    pounding_fraction: float
+    required_gap: float
+    agrees: bool
+    closed_form_force: float
+    closed_form_gap: float
+    closed_form_pounding_probability: float
+    target_probability: float
+
+    @property
+    def force_answer(self) -> float:
+        """The E[F_max] the tool stands behind [N]: the closed form's where it agrees, otherwise the records' mean."""
+        return self.closed_form_force if self.agrees else self.force_max_mean
+
+    @property
+    def answer_source(self) -> str:
+        """Where :attr:`force_answer` comes from: "closed form" or "monte carlo"."""
+        return "closed form" if self.agrees else "monte carlo"
+
+    @property
+    def gap_answer(self) -> float:
+        """The gap for the target the tool stands behind [m]: the larger of the closed form's and the records'."""
+        return max(self.closed_form_gap, self.required_gap)
+
+    @property
+    def gap_source(self) -> str:
+        """Where :attr:`gap_answer` comes from: "closed form" or "monte carlo"."""
+        return "monte carlo" if self.required_gap > self.closed_form_gap else "closed form"
+
+    @property
+    def error(self) -> float:
+        """The closed form's E[F_max] over the records' mean, minus 1 [-]; nan where no record pounded."""
+        return self.closed_form_force / self.force_max_mean - 1.0 if self.force_max_mean > 0.0 else math.nan
+
+    def to_dict(self) -> dict:
+        """JSON-ready, SI units (``estimate --json``'s ``check``): the study and the verdict."""
+        low, high = self.force_max_confidence_interval
+        return {
+            "records": self.records,
+            "seed": self.seed,
+            "force_max_mean": self.force_max_mean,
+            "force_max_confidence_interval": [_finite_or_none(low), _finite_or_none(high)],
+            "force_max_quantiles": dict(self.force_max_quantiles),
+            "pounding_fraction": self.pounding_fraction,
+            "required_gap": self.required_gap,
+            "target_probability": self.target_probability,
+            "agrees": self.agrees,
+            "units": {"force": "N", "length": "m"},
+        }
+
+    def answers(self) -> dict:
+        """JSON-ready, SI units (``estimate --json``'s top level): the force and the gap the tool stands behind, and
+        where each comes from."""
+        return {"force_answer": self.force_answer, "answer_source": self.answer_source,
+                "gap_answer": self.gap_answer, "gap_source": self.gap_source}
+
+    def sentences(self, force: Callable[[float], str], length: Callable[[float], str]) -> tuple[str, str]:
+        """The verdict in two sentences, the force's and the gap's, every number with its unit: ``force`` and
+        ``length`` turn a force [N] and a length [m] into text (``Display.force``, ``Display.length``)."""
+        plural = "s" if self.records > 1 else ""
+        study = (f"{self.records} recorded motion{plural}" if self.seed is None
+                 else f"{self.records} record{plural}, seed {self.seed}")
+        low, high = self.force_max_confidence_interval
+        verdict = "agrees" if self.agrees else f"does not agree: {force(self.force_max_mean)} stands"
+        if self.force_max_mean == 0.0:
+            found = f"no record pounded (so pounding under {100 * unpounded_bound(self.records):.1f} %, 95 % confidence)"
+            closed = f"the closed form's pounding probability, {100 * self.closed_form_pounding_probability:.1f} %, {verdict}"
+        else:
+            interval = f"95 % interval {force(low)} to {force(high)}" if math.isfinite(high - low) else "one record: no interval"
+            found = f"{force(self.force_max_mean)} ({interval})"
+            side = "under" if self.error < 0 else "over"
+            closed = f"the closed form's {force(self.closed_form_force)} is {100 * abs(self.error):.0f} % {side} it and {verdict}"
+        gap = (f"the closed form's {length(self.closed_form_gap)} covers it" if self.gap_source == "closed form"
+               else f"the closed form's {length(self.closed_form_gap)} falls short: {length(self.required_gap)} stands")
+        force_sentence = f"Monte Carlo check ({study}): {found}; {closed}."
+        gap_sentence = (f"Monte Carlo gap for {100 * self.target_probability:g} % no pounding, same records: "
+                        f"{length(self.required_gap)}; {gap}.")
+        return force_sentence, gap_sentence
+
+
+def _finite_or_none(value: float) -> float | None:
+    return float(value) if math.isfinite(value) else None
+
+
+def unpounded_bound(records: int) -> float:
+    """The largest probability of pounding that 0 pounding records of ``records`` leave, at 95 % confidence:
+    1 - 0.05^(1/records) [-] (about 3 / records)."""
+    return 1.0 - 0.05 ** (1.0 / records)
+
+
+def check_estimate(estimate: Estimate, plan: MonteCarloPlan | int | None = None, **options) -> EstimateCheck:
+    """Check a closed-form estimate against a Monte Carlo study of its case.
+
+    Parameters
+    ----------
+    estimate : Estimate
+        :func:`~pounding.closed_form.estimator.estimate`'s result; its case is simulated, its
+        ``target_probability`` is the target of both gaps.
+    plan : MonteCarloPlan, or int, optional
+        How the study runs (a number: its records). ``records`` None (the default): a recorded suite's records,
+        each once, or as many synthetic records as the precision asks (the module's docstring). The study starts
+        at record 0 whatever ``first_record`` says; ``progress(done, total)`` counts the records run with and
+        without contact, ``total`` growing as the study does.
+    **options
+        Fields of the plan given one by one: ``check_estimate(result, records=200, seed=1)``.
+
+    Returns
+    -------
+    EstimateCheck
+    """
+    if not isinstance(estimate, Estimate):
+        raise ArgumentError("estimate", f"must be an Estimate (pounding.estimate's result), got {described(estimate)}")
+    if isinstance(plan, numbers.Integral) and not isinstance(plan, bool):
+        if "records" in options:
+            raise ArgumentError("records", "is given twice: as the plan and by name")
+        plan, options = None, {"records": plan, **options}
+    plan = as_plan(plan, options)
+    case = estimate.case
+    counted = _Progress(plan.progress)
+    if plan.records is not None or suite_size(case):
+        result = simulate(case, dataclasses.replace(plan, first_record=0, progress=counted.at(0)))
+    else:
+        result = _adaptive(case, plan, counted)
+    target = estimate.target_probability
+    # a record that never touched moved freely throughout; one that touched has its free peak beyond the case's gap
+    gap = gap_from_peaks(np.where(result.impacts == 0, result.relative_displacement_max, np.inf), target)
+    if not math.isfinite(gap):
+        counted.planned = 2 * result.n_records
+        free = design_gap(case, target, dataclasses.replace(plan, records=result.n_records, progress=counted.at(result.n_records)))
+        gap = free.gap
+    counted.finish()
+    return EstimateCheck(
+        records=result.n_records,
+        seed=None if case.recorded else result.seed,
+        force_max_mean=result.force_max_mean,
+        force_max_confidence_interval=tuple(float(v) for v in result.force_max_confidence_interval),
+        force_max_quantiles={key: result.force_max_quantile(float(key))[0] for key in defaults.FORCE_QUANTILES},
+        pounding_fraction=result.pounding_fraction,
+        required_gap=gap,
+        agrees=_agrees(estimate, result),
+        closed_form_force=estimate.force_expected,
+        closed_form_gap=estimate.required_gap,
+        closed_form_pounding_probability=estimate.pounding_probability,
+        target_probability=target,
+    )
+
+
+def _agrees(estimate: Estimate, result: SimulationResult) -> bool:
+    """Whether the closed form's E[F_max] agrees with the records (the module's docstring)."""
+    mean, force = result.force_max_mean, estimate.force_expected
+    if mean == 0.0:
+        return estimate.pounding_probability <= unpounded_bound(result.n_records)
+    low, high = result.force_max_confidence_interval
+    return bool(low <= force <= high and math.isfinite(high - low)) or abs(force / mean - 1.0) <= defaults.CHECK_TOLERANCE
+
+
+class _Progress:
+    """The caller's ``progress(done, total)`` over the study's parts: each part reports its own records, offset by
+    those before it; ``planned`` is the total as the study knows it so far."""
+
+    def __init__(self, report):
+        self.report, self.done, self.planned = report, 0, 0
+
+    def at(self, offset: int):
+        if self.report is None:
+            return None
+
+        def progress(done: int, total: int) -> None:
+            self.done = offset + done
+            self.planned = max(self.planned, offset + total)
+            self.report(self.done, self.planned)
+
+        return progress
+
+    def finish(self) -> None:
+        if self.report is not None and self.planned != self.done:
+            self.planned = self.done
+            self.report(self.done, self.done)
+
+
+def _adaptive(case, plan: MonteCarloPlan, counted: _Progress) -> SimulationResult:
+    """Synthetic records in chunks, each record once, until the precision or the count of the module's docstring."""
+    parts: list[SimulationResult] = []
+    size = defaults.CHECK_FIRST_RECORDS
+    while size:
+        done = sum(part.n_records for part in parts)
+        counted.planned = max(counted.planned, done + size)
+        parts.append(simulate(case, dataclasses.replace(plan, records=size, first_record=done, progress=counted.at(done))))
+        result = _joined(parts)
+        size = _next_chunk(result)
+    return result
+
+
+def _next_chunk(result: SimulationResult) -> int:
+    """Records of the next chunk; 0 when the study is done."""
+    records, mean = result.n_records, result.force_max_mean
+    room = defaults.CHECK_MAX_RECORDS - records
+    if room <= 0:
+        return 0
+    if mean == 0.0:
+        return max(0, min(defaults.CHECK_UNPOUNDED_RECORDS - records, room))
+    low, high = result.force_max_confidence_interval
+    ratio = (high - low) / 2.0 / (defaults.CHECK_PRECISION * mean)
+    if ratio <= 1.0:
+        return 0
+    wanted = math.ceil(_MARGIN * records * ratio**2)
+    return min(room, max(wanted - records, _SMALLEST_CHUNK))
+
+
+def _joined(parts: list[SimulationResult]) -> SimulationResult:
+    """Consecutive studies of one case and seed as one."""
+    if len(parts) == 1:
+        return parts[0]
+    arrays = {f.name: np.concatenate([getattr(p, f.name) for p in parts]) for f in dataclasses.fields(SimulationResult)
+              if isinstance(getattr(parts[0], f.name), np.ndarray)}
+    return dataclasses.replace(parts[0], **arrays)
