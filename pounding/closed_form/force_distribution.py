@@ -92,10 +92,12 @@ def force_distribution(crossings: Crossings, gap: float, contact, reduced_mass: 
 
 
 def force_distribution_of(case) -> ForceDistribution:
-    """G31 of ``case`` at its own gap, without the rest of an estimate (its mean is :func:`~pounding.estimate`'s
-    E[F_max]). Two buildings that move alike never pound: F_max = 0 for sure (where :func:`~pounding.estimate`
-    refuses the case, a spectrum passing T1 = T2 takes this point)."""
-    pair = LinearizedPair.of(case)
+    """G31 of ``case`` (a Case, or its :class:`~pounding.closed_form.pair.LinearizedPair`) at its own gap, without the
+    rest of an estimate (its mean is :func:`~pounding.estimate`'s E[F_max]). Two buildings that move alike never
+    pound: F_max = 0 for sure (where :func:`~pounding.estimate` refuses the case, a spectrum passing T1 = T2 takes
+    this point)."""
+    pair = case if isinstance(case, LinearizedPair) else LinearizedPair.of(case)
+    case = pair.case
     if pair.moves_alike:
         pair.check_runaway()
         return ForceDistribution(np.array([0.0, 1.0]), np.ones(2))

@@ -15,9 +15,12 @@ which value before.
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
+
+import numpy as np
 
 from pounding.hazard.excitation import CloughPenzien
 from pounding.mechanics.contact import undamped_peak_force
@@ -33,11 +36,14 @@ __all__ = [
     "REGIMES",
     "RESIDUAL_SHARE_LIMIT",
     "Assessment",
+    "MeasuredRange",
+    "accuracy_band",
     "accuracy_data",
     "accuracy_regime",
     "assess",
     "extreme_warnings",
     "hazard_warnings",
+    "measured_range",
 ]
 
 MODERATE_GAP = 0.5
@@ -116,10 +122,6 @@ class Assessment:
     warnings: tuple[str, ...]
 
 
-def _span(entry: dict) -> str:
-    return f"{100 * entry['low']:+.0f} % to {100 * entry['high']:+.0f} %"
-
-
 def _force_entry(spectrum: str, regime: str, yielding: bool) -> dict:
     table = accuracy_data()["force"][spectrum]
     if regime == "rare":
@@ -127,9 +129,80 @@ def _force_entry(spectrum: str, regime: str, yielding: bool) -> dict:
     return table["gap below sigma_X"] if spectrum == "clough-penzien" else table[regime]
 
 
-def _statement(entry: dict, where: str) -> str:
-    return (f"Measured {_span(entry)} off Monte Carlo {where} (within 10 % on {entry['within_10_percent']} "
-            f"of {entry['cases']} cases).")
+@dataclass(frozen=True)
+class MeasuredRange:
+    """How far the recommended E[F_max] was measured from Monte Carlo on cases like one (``pounding/data/accuracy.json``,
+    :func:`measured_range`): the error, closed form / Monte Carlo - 1, from ``low`` to ``high`` [-].
+
+    Attributes
+    ----------
+    regime : str
+        One of :data:`REGIMES`, or "moving alike" (two buildings that never pound: F_max = 0 exactly, ``low`` =
+        ``high`` = 0).
+    low, high : float
+        The smallest and the largest error measured there [-]; ``low`` = -1 where the closed form gave 0 and the records
+        pounded.
+    cases, within_10_percent : int
+        Cases measured there, and how many of them within 10 %.
+    where : str
+        Where that is, in words ("where pounding is frequent").
+    """
+
+    regime: str
+    low: float
+    high: float
+    cases: int
+    within_10_percent: int
+    where: str = ""
+
+    def band(self, force):
+        """Where the Monte Carlo mean lay for a closed-form E[F_max] ``force`` [N] (a number or an array), given
+        the errors measured: ``force / (1 + high)`` to ``force / (1 + low)`` [N]; the upper edge is inf where
+        ``low`` is -1 (nothing bounds the records' mean from above)."""
+        force = np.asarray(force, dtype=float)
+        upper = force / (1.0 + self.low) if self.low > -1.0 else np.full(force.shape, math.inf)
+        return force / (1.0 + self.high), upper
+
+    def to_dict(self) -> dict:
+        """JSON-ready: the regime and the range of closed form / Monte Carlo - 1 [-]."""
+        return {"regime": self.regime, "low": self.low, "high": self.high}
+
+    def statement(self) -> str:
+        """The estimate's one sentence (``Estimate.measured_accuracy``)."""
+        return (f"Measured {_span(self)} off Monte Carlo {self.where} (within 10 % on {self.within_10_percent} "
+                f"of {self.cases} cases).")
+
+
+def _spectrum(pair) -> str:
+    """The row of accuracy.json's ``force`` table a pair reads."""
+    return "clough-penzien" if isinstance(pair.case.excitation.spectrum, CloughPenzien) else "kanai-tajimi"
+
+
+def measured_range(pair, gap: float | None = None, sigma_x: float | None = None) -> MeasuredRange:
+    """The measured accuracy of the recommended E[F_max] of a :class:`~pounding.closed_form.pair.LinearizedPair` at
+    ``gap`` [m] (default the case's), ``sigma_x`` [m] the relative displacement's with the residual's response
+    (default the pair's): the regime :func:`accuracy_regime` places it in and that regime's row of accuracy.json.
+    The numbers behind ``Estimate.measured_accuracy``, and behind a curve's band at each of its points."""
+    if pair.moves_alike:
+        return MeasuredRange("moving alike", 0.0, 0.0, 0, 0, "where the buildings move alike (no pounding, exactly)")
+    gap = pair.case.contact.gap if gap is None else float(gap)
+    sigma_x = pair.response_with_residual.sigma_relative_displacement if sigma_x is None else sigma_x
+    spectrum = _spectrum(pair)
+    regime = accuracy_regime(gap, sigma_x, pair.residual_share, pair.bandwidth)
+    entry = _force_entry(spectrum, regime, pair.yielding)
+    where = _WHERE[regime] + (" under a Clough-Penzien spectrum" if spectrum == "clough-penzien" else "")
+    return MeasuredRange(regime, float(entry["low"]), float(entry["high"]), int(entry["cases"]),
+                         int(entry["within_10_percent"]), where)
+
+
+def accuracy_band(force, ranges) -> tuple[np.ndarray, np.ndarray]:
+    """A closed-form curve's band of measured accuracy: at each point, :meth:`MeasuredRange.band` of its ``force``
+    [N] by its own :class:`MeasuredRange` (``ranges``, one a point: the regime may change along a curve)."""
+    force = np.asarray(force, dtype=float).ravel()
+    if len(ranges) != force.size:
+        raise ValueError(f"{len(ranges)} measured ranges for {force.size} points")
+    edges = np.array([r.band(f) for f, r in zip(force, ranges)], dtype=float).reshape(force.size, 2)
+    return edges[:, 0], edges[:, 1]
 
 
 _WHERE = {
@@ -147,11 +220,10 @@ def assess(pair, gap: float, sigma_x: float, required_gap: float, target_probabi
     :class:`~pounding.closed_form.pair.LinearizedPair` at ``gap`` [m], ``sigma_x`` [m]
     the relative displacement's with the residual's response, and the gap it
     gives for ``target_probability`` [m]."""
-    spectrum = "clough-penzien" if isinstance(pair.case.excitation.spectrum, CloughPenzien) else "kanai-tajimi"
+    spectrum = _spectrum(pair)
     yielding, share, bandwidth = pair.yielding, pair.residual_share, pair.bandwidth
-    regime = accuracy_regime(gap, sigma_x, share, bandwidth)
-    where = _WHERE[regime] + (" under a Clough-Penzien spectrum" if spectrum == "clough-penzien" else "")
-    entry = _force_entry(spectrum, regime, yielding)
+    measured = measured_range(pair, gap, sigma_x)
+    regime = measured.regime
     warnings = []
     if spectrum == "clough-penzien" and yielding:
         drift = accuracy_data()["required_gap"]["clough-penzien, yielding"]
@@ -167,12 +239,12 @@ def assess(pair, gap: float, sigma_x: float, required_gap: float, target_probabi
         warnings.append("The gap lies between sigma_X / 2 and sigma_X: the force may be off by "
                         f"{_span(_force_entry(spectrum, 'moderate gap', yielding))}. {_CHECK}")
     if gap > sigma_x:
-        warnings.append(f"Pounding is rare at this gap (above sigma_X): the force may be off by {_span(entry)}. {_CHECK}")
+        warnings.append(f"Pounding is rare at this gap (above sigma_X): the force may be off by {_span(measured)}. {_CHECK}")
     if required_gap > sigma_x:  # where pairs like this one were measured to pound more often than 1 - 0.95
         warning = _required_gap_warning(pair, spectrum, yielding, target_probability)
         if warning:
             warnings.append(warning)
-    return Assessment(regime, _statement(entry, where), tuple(warnings))
+    return Assessment(regime, measured.statement(), tuple(warnings))
 
 
 def _required_gap_warning(pair, spectrum: str, yielding: bool, target_probability: float) -> str:
@@ -190,9 +262,11 @@ def _required_gap_warning(pair, spectrum: str, yielding: bool, target_probabilit
             f"{100 * measured['max']:.0f} % of records pounded. Use `pounding simulate --design-gap {target_probability:.8g}`.")
 
 
-def _span(entry: dict) -> str:
-    """A measured range of errors as the warnings print it: ``-19 % to +13 %``."""
-    return f"{100 * entry['low']:+,.0f} % to {100 * entry['high']:+,.0f} %"
+def _span(entry: dict | MeasuredRange) -> str:
+    """A measured range of errors (accuracy.json's entry, or a :class:`MeasuredRange`) as the estimate prints it:
+    ``-19 % to +13 %``."""
+    low, high = (entry["low"], entry["high"]) if isinstance(entry, dict) else (entry.low, entry.high)
+    return f"{100 * low:+,.0f} % to {100 * high:+,.0f} %"
 
 
 def extreme_warnings(pair, force: float, paper_force: float | None, velocity: float, sigma_x: float) -> tuple[str, ...]:
