@@ -101,6 +101,16 @@ def _run(args, compute, chart, title: str):
     return result
 
 
+_BAND_HEADER = "  E[F_max] band of measured accuracy (regime)"
+
+
+def _bands(band, accuracy, shown) -> list[str]:
+    """Each point's band of measured accuracy as a column: where the Monte Carlo E[F_max] lay given the closed form's."""
+    low, high = band
+    return [f"  {shown.force(lo)} to {shown.force(hi) if hi < float('inf') else 'unbounded'} ({measured.regime})"
+            for lo, hi, measured in zip(low, high, accuracy)]
+
+
 def run_fragility(args) -> int:
     from pounding.display_units import display
     from pounding.studies.fragility import fragility_curve
@@ -124,7 +134,8 @@ def run_fragility(args) -> int:
     if mc is not None:
         print(f"Monte Carlo    {mc.records} records a PGA" + ("" if curve.case.recorded else f", seed {mc.seed}"))
     header = f"{'PGA [g]':>8}  {'P closed form':>13}  {'E[F_max]':>12}  {'F_84':>12}"
-    print(header + ("  P Monte Carlo (95 % interval)" if mc is not None else ""))
+    print(header + ("  P Monte Carlo (95 % interval)" if mc is not None else "") + _BAND_HEADER)
+    bands = _bands(curve.force_band(), curve.accuracy, shown)
     exceeding = mc.exceeding(curve.capacity) if mc is not None else None
     intervals = mc.intervals(curve.capacity) if mc is not None else None
     for index, pga in enumerate(curve.pga):
@@ -132,7 +143,7 @@ def run_fragility(args) -> int:
                 f"{shown.force(curve.force_84[index]):>12}")
         if mc is not None:
             line += f"  {exceeding[index] / mc.records:.3f} ({intervals[index, 0]:.3f} to {intervals[index, 1]:.3f})"
-        print(line)
+        print(line + bands[index])
     for label, fit in (("closed form", curve.lognormal), ("Monte Carlo", curve.lognormal_monte_carlo)):
         if label == "Monte Carlo" and mc is None:
             continue
@@ -167,14 +178,15 @@ def run_spectrum(args) -> int:
     if mc is not None:
         print(f"Monte Carlo    {mc.records} records a period" + ("" if spectrum.case.recorded else f", seed {mc.seed}"))
     header = f"{'T1 [s]':>7}  {'T2 [s]':>7}  {'E[F_max]':>12}  {'F_84':>12}  {'P(pounding)':>11}"
-    print(header + (f"  {'E[F_max] MC':>12}  {'F_84 MC':>12}" if mc is not None else ""))
+    print(header + (f"  {'E[F_max] MC':>12}  {'F_84 MC':>12}" if mc is not None else "") + _BAND_HEADER)
+    bands = _bands(spectrum.force_band(), spectrum.accuracy, shown)
     q84 = mc.quantile(0.84)[0] if mc is not None else None
     for index, (t1, t2) in enumerate(zip(spectrum.period1, spectrum.period2)):
         line = (f"{t1:7.4g}  {t2:7.4g}  {shown.force(spectrum.force_mean[index]):>12}  {shown.force(spectrum.force_84[index]):>12}  "
                 f"{spectrum.pounding_probability[index]:11.3f}")
         if mc is not None:
             line += f"  {shown.force(mc.force_mean[index]):>12}  {shown.force(q84[index]):>12}"
-        print(line)
+        print(line + bands[index])
     if args.output:
         print(f"chart          {args.output}")
     return 0

@@ -14,7 +14,18 @@ from pounding.display_units import display
 from pounding.output import write_atomic
 from pounding.units import STANDARD_GRAVITY
 
-__all__ = ["fragility_chart", "spectrum_chart", "write_chart_page"]
+__all__ = ["BAND_LABEL", "band_label", "fragility_chart", "spectrum_chart", "write_chart_page"]
+
+BAND_LABEL = "closed form, measured accuracy"
+"""The legend of a closed-form curve's band of measured accuracy; :func:`band_label` adds its regimes."""
+
+
+def band_label(ranges) -> str:
+    """The legend of a band over points of these :class:`~pounding.closed_form.regimes.MeasuredRange` s: "closed
+    form, measured accuracy (frequent, moderate gap, rare)", each regime once, in the curve's order."""
+    regimes = list(dict.fromkeys(r.regime for r in ranges))
+    return f"{BAND_LABEL} ({', '.join(regimes)})" if regimes else BAND_LABEL
+
 
 SPECTRUM_RECORDS_SHOWN = 5
 """Records whose own (deterministic, Jankowski-style) spectrum a force-spectrum chart draws in grey."""
@@ -51,6 +62,32 @@ def write_chart_page(path: str | os.PathLike, title: str, layout, note: str, tab
     return path
 
 
+def _band(plot, x, force, ranges, scale: float) -> list[str]:
+    """Shade a closed-form E[F_max] curve's band of measured accuracy on ``plot`` (``force`` [N] at ``x``, one
+    :class:`~pounding.closed_form.regimes.MeasuredRange` a point, forces shown divided by ``scale``); the axis keeps
+    fitting the curves, a band unbounded above runs off it. Returns the band at each point as text, for the table."""
+    from pounding.closed_form.regimes import accuracy_band
+
+    if not ranges:
+        return []
+    low, high = accuracy_band(force, ranges)
+    ceiling = 10.0 * max(float(np.max(force)), 1e-300)
+    band = plot.varea(x=x, y1=low / scale, y2=np.minimum(high, ceiling) / scale, fill_color="#1f77b4", fill_alpha=0.15,
+                      legend_label=band_label(ranges))
+    plot.y_range.renderers = [r for r in plot.renderers if r is not band]
+    return [f"{lo / scale:.4g}-" + (f"{hi / scale:.4g}" if np.isfinite(hi) else "unbounded") + f" ({r.regime})"
+            for lo, hi, r in zip(low, high, ranges)]
+
+
+def _band_note(ranges) -> str:
+    if not ranges:
+        return ""
+    return (" The shaded band is where the Monte Carlo E[F_max] lay given the closed form's, by the errors measured in "
+            "each point's regime (pounding/data/accuracy.json: E[F_max] / (1 + highest) to E[F_max] / (1 + lowest); "
+            "unbounded above where the closed form was measured at 0 while records pounded); it is measured for E[F_max] "
+            "only, so the other curves have none.")
+
+
 def fragility_chart(curve, units: str = "SI"):
     """The Bokeh layout, note and table of a :class:`~pounding.studies.fragility.FragilityCurve`."""
     from bokeh.layouts import row
@@ -70,9 +107,13 @@ def fragility_chart(curve, units: str = "SI"):
     forces.line(pga, curve.force_84 / shown.force_scale, line_width=2, line_dash="dotdash", color="#1f77b4",
                 legend_label="84th percentile, closed form")
     forces.add_layout(Span(location=curve.capacity / shown.force_scale, dimension="width", line_color="#d62728", line_dash="dashed"))
+    bands = _band(forces, pga, curve.force_expected, curve.accuracy, shown.force_scale)
     header = ["PGA [g]", "P closed form", f"E[F_max] [{shown.force_unit}]", f"F_84 [{shown.force_unit}]"]
     rows = [[f"{a:.4g}", f"{p:.3f}", f"{f / shown.force_scale:.4g}", f"{q / shown.force_scale:.4g}"]
             for a, p, f, q in zip(pga, curve.probability, curve.force_expected, curve.force_84)]
+    if bands:
+        header.append(f"E[F_max] measured accuracy [{shown.force_unit}]")
+        rows = [r + [b] for r, b in zip(rows, bands)]
     mc = curve.monte_carlo
     if mc is not None:
         exceeding = mc.exceeding(curve.capacity)
@@ -97,7 +138,7 @@ def fragility_chart(curve, units: str = "SI"):
                         + (" (at its bound: not pinned by the data)" if fit.at_bound else ""))
     note = (f"Case {curve.case.name}; its own expected PGA is {curve.reference_pga / STANDARD_GRAVITY:.3g} g. The ground motion is "
             "scaled to each PGA; the closed form is G31 at each, the lognormal curves are maximum-likelihood fits"
-            + (" (" + "; ".join(fits) + ")." if fits else "."))
+            + (" (" + "; ".join(fits) + ")." if fits else ".") + _band_note(curve.accuracy))
     return row(probability, forces), note, _table("Fragility curve", header, rows)
 
 
@@ -116,6 +157,7 @@ def spectrum_chart(spectrum, units: str = "SI"):
     plot.line(spectrum.period1, spectrum.force_mean / scale, line_width=2, color="#1f77b4", legend_label="E[F_max], closed form")
     plot.line(spectrum.period1, spectrum.force_84 / scale, line_width=2, line_dash="dotdash", color="#1f77b4",
               legend_label="84th percentile, closed form")
+    bands = _band(plot, spectrum.period1, spectrum.force_mean, spectrum.accuracy, scale)
     header = ["T1 [s]", "T2 [s]", f"E[F_max] [{shown.force_unit}]", f"F_84 [{shown.force_unit}]", "P(pounding)"]
     rows = [[f"{t1:.4g}", f"{t2:.4g}", f"{f / scale:.4g}", f"{q / scale:.4g}", f"{p:.3f}"]
             for t1, t2, f, q, p in zip(spectrum.period1, spectrum.period2, spectrum.force_mean, spectrum.force_84,
@@ -130,11 +172,15 @@ def spectrum_chart(spectrum, units: str = "SI"):
         plot.scatter("x", "q84", source=source, size=7, marker="triangle", color="#ff7f0e", legend_label="84th percentile, Monte Carlo")
         header += [f"E[F_max] MC [{shown.force_unit}]", f"F_84 MC [{shown.force_unit}]"]
         rows = [r + [f"{m / scale:.4g}", f"{q / scale:.4g}"] for r, m, q in zip(rows, mc.force_mean, q84)]
+    if bands:
+        header.append(f"E[F_max] measured accuracy [{shown.force_unit}]")
+        rows = [r + [b] for r, b in zip(rows, bands)]
     plot.width = 900
     plot.legend.label_text_font_size = "8pt"
     plot.add_layout(plot.legend[0], "right")
     note = (f"Case {spectrum.case.name}: each building made stiffer or softer to the periods shown (masses, yield drifts, "
             "damping ratio, gap, restitution and ground motion held). Jankowski's pounding force response spectrum is "
             "the peak force of one record against the period; this is its mean and 84th percentile over the random "
-            "ground motion" + (", with the first records' own spectra in grey." if mc is not None else "."))
+            "ground motion" + (", with the first records' own spectra in grey." if mc is not None else ".")
+            + _band_note(spectrum.accuracy))
     return plot, note, _table("Force spectrum", header, rows)

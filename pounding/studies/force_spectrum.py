@@ -16,6 +16,7 @@ from pounding import defaults
 from pounding.blas import single_blas_thread
 from pounding.case.case import Case, as_case
 from pounding.case.scaling import with_fundamental_periods
+from pounding.closed_form.regimes import accuracy_band, measured_range
 from pounding.errors import ArgumentError, ConvergenceError, finite_number, quote
 from pounding.simulation.plan import MonteCarloPlan
 from pounding.studies.fragility import check_intensities
@@ -39,6 +40,9 @@ class ForceSpectrum:
     pounding_probability : ndarray
         Closed-form P(at least one impact) (G31 at F = 0) [-].
     monte_carlo : MonteCarloForces or None
+    accuracy : tuple of MeasuredRange
+        The measured accuracy of ``force_mean`` at each period (:func:`~pounding.closed_form.regimes.measured_range`);
+        its band: :meth:`force_band`.
     """
 
     case: Case
@@ -48,6 +52,12 @@ class ForceSpectrum:
     force_84: np.ndarray
     pounding_probability: np.ndarray
     monte_carlo: MonteCarloForces | None = None
+    accuracy: tuple = ()
+
+    def force_band(self) -> tuple[np.ndarray, np.ndarray]:
+        """Where the Monte Carlo E[F_max] lay at each period given the closed form's, by the errors measured in
+        each point's regime [N] (:func:`~pounding.closed_form.regimes.accuracy_band`)."""
+        return accuracy_band(self.force_mean, self.accuracy)
 
     def to_dict(self) -> dict:
         """JSON-ready: periods in s, forces in N."""
@@ -58,6 +68,7 @@ class ForceSpectrum:
             "force_mean": self.force_mean.tolist(),
             "force_84": self.force_84.tolist(),
             "pounding_probability": self.pounding_probability.tolist(),
+            "measured_accuracy": [r.to_dict() for r in self.accuracy],
         }
         if self.monte_carlo is not None:
             mc = self.monte_carlo
@@ -95,24 +106,27 @@ def force_spectrum(case, period1, period_ratio: float | None = None, period2: fl
     at least :data:`~pounding.defaults.SPECTRUM_MIN_RECORDS` records.
     """
     from pounding.closed_form.force_distribution import force_distribution_of
+    from pounding.closed_form.pair import LinearizedPair
 
     period1 = check_intensities(period1, "period1")
     periods2 = _periods_of_building_2(period1, period_ratio, period2)
     if monte_carlo is not None:
         check_plan_records(monte_carlo, defaults.SPECTRUM_MIN_RECORDS, "for an interval of the 84th percentile")
     base = case if isinstance(case, Case) else as_case(case)
-    distributions = []
+    distributions, accuracy = [], []
     with single_blas_thread():
         for t1, t2 in zip(period1, periods2):
             try:
-                distributions.append(force_distribution_of(with_fundamental_periods(base, t1, t2)))
+                pair = LinearizedPair.of(with_fundamental_periods(base, t1, t2))
+                distributions.append(force_distribution_of(pair))
+                accuracy.append(measured_range(pair))
             except ConvergenceError as error:
                 raise ConvergenceError(f"at T1 = {t1:.4g} s, T2 = {t2:.4g} s: {error}") from None
     spectrum = ForceSpectrum(
         case=base, period1=period1, period2=periods2,
         force_mean=np.array([d.mean() for d in distributions]),
         force_84=np.array([d.quantile(0.84) for d in distributions]),
-        pounding_probability=np.array([1.0 - d.no_impact_probability for d in distributions]),
+        pounding_probability=np.array([1.0 - d.no_impact_probability for d in distributions]), accuracy=tuple(accuracy),
     )
     if monte_carlo is None:
         return spectrum

@@ -18,6 +18,8 @@ from pounding.blas import single_blas_thread
 from pounding.case.case import Case, as_case
 from pounding.case.scaling import PeakGroundAcceleration
 from pounding.closed_form.force_distribution import force_distribution_of
+from pounding.closed_form.pair import LinearizedPair
+from pounding.closed_form.regimes import accuracy_band, measured_range
 from pounding.errors import ArgumentError, ConvergenceError, check_limit, finite_number, quote
 from pounding.simulation.plan import MonteCarloPlan
 from pounding.studies.monte_carlo_study import MonteCarloForces, check_plan_records, monte_carlo_forces_at
@@ -122,6 +124,9 @@ class FragilityCurve:
     monte_carlo : MonteCarloForces or None
     lognormal_monte_carlo : LognormalFragility or None
         Fitted to the Monte Carlo counts.
+    accuracy : tuple of MeasuredRange
+        The measured accuracy of ``force_expected`` at each PGA (:func:`~pounding.closed_form.regimes.measured_range`:
+        the regime moves with the intensity); its band: :meth:`force_band`.
     """
 
     case: Case
@@ -134,6 +139,12 @@ class FragilityCurve:
     lognormal: LognormalFragility | None
     monte_carlo: MonteCarloForces | None = None
     lognormal_monte_carlo: LognormalFragility | None = None
+    accuracy: tuple = ()
+
+    def force_band(self) -> tuple[np.ndarray, np.ndarray]:
+        """Where the Monte Carlo E[F_max] lay at each PGA given the closed form's, by the errors measured in each
+        point's regime [N] (:func:`~pounding.closed_form.regimes.accuracy_band`)."""
+        return accuracy_band(self.force_expected, self.accuracy)
 
     def to_dict(self) -> dict:
         """JSON-ready: accelerations in g, forces in N."""
@@ -147,6 +158,7 @@ class FragilityCurve:
             "force_expected": self.force_expected.tolist(),
             "force_84": self.force_84.tolist(),
             "lognormal": fit(self.lognormal),
+            "measured_accuracy": [r.to_dict() for r in self.accuracy],
         }
         if self.monte_carlo is not None:
             out.update(
@@ -200,11 +212,13 @@ def fragility_curve(case, capacity: float, pga, monte_carlo: MonteCarloPlan | No
         check_plan_records(monte_carlo, defaults.FRAGILITY_MIN_RECORDS, "for a useful interval")
     base = as_case(case) if not isinstance(case, Case) else case
     scaling = PeakGroundAcceleration(base)
-    distributions = []
+    distributions, accuracy = [], []
     with single_blas_thread():
         for value in pga:
             try:
-                distributions.append(force_distribution_of(scaling.case_at(value)))
+                pair = LinearizedPair.of(scaling.case_at(value))
+                distributions.append(force_distribution_of(pair))
+                accuracy.append(measured_range(pair))
             except ConvergenceError as error:
                 raise ConvergenceError(f"at PGA {value / STANDARD_GRAVITY:.4g} g: {error}") from None
     probability = np.array([d.probability_exceeding(capacity) for d in distributions])
@@ -212,7 +226,7 @@ def fragility_curve(case, capacity: float, pga, monte_carlo: MonteCarloPlan | No
         case=base, capacity=capacity, pga=pga, probability=probability,
         force_expected=np.array([d.mean() for d in distributions]),
         force_84=np.array([d.quantile(0.84) for d in distributions]),
-        reference_pga=scaling.reference, lognormal=fit_lognormal(pga, probability, 1.0),
+        reference_pga=scaling.reference, lognormal=fit_lognormal(pga, probability, 1.0), accuracy=tuple(accuracy),
     )
     if monte_carlo is None:
         return curve
