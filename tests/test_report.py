@@ -161,12 +161,29 @@ def _summary(text: str) -> dict:
     return {html.unescape(q): html.unescape(v) for q, v in rows}
 
 
+@pytest.fixture(scope="module")
+def default_check():
+    """check_estimate of the default case called directly, at the report's seed: what every report of it shows."""
+    from pounding import defaults
+    from pounding.studies.check import check_estimate
+
+    return check_estimate(estimate(load_case(DEFAULT_PRESET)), seed=defaults.REPORT_SEED)
+
+
 @pytest.mark.parametrize("units", ["SI", "kgf-cm-s"])
-def test_the_summary_numbers_are_the_librarys(tmp_path, units):
+def test_the_summary_numbers_are_the_librarys(tmp_path, units, default_check):
+    """Every number of the summary, the Monte Carlo check's included: the report runs check_estimate on the case at
+    the report's seed, and shows what calling it directly gives."""
+    import dataclasses
+
     case = load_case(DEFAULT_PRESET)
-    text = write_report(tmp_path / "r.html", compute_snapshot(case), units).read_text()
-    e, shown = estimate(case), display(units)
+    snapshot = compute_snapshot(case)
+    assert snapshot.seed == 1 and snapshot.check is None  # defaults.REPORT_SEED; the check is the report's to run
+    text = write_report(tmp_path / "r.html", snapshot, units).read_text()
+    e, shown, check = estimate(case), display(units), default_check
     distribution = e.force_max_distribution
+    low, high = check.force_max_confidence_interval
+    assert check.agrees and 0.0 < abs(check.error) <= 0.1
     assert _summary(text) == {
         "expected extreme pounding force E[F_max]": shown.force(e.force_expected),
         "F_max, 50 % fractile": shown.force(distribution.quantile(0.5)),
@@ -175,28 +192,45 @@ def test_the_summary_numbers_are_the_librarys(tmp_path, units):
         "probability of pounding": f"{100 * e.pounding_probability:.3g} %",
         "gap needed for 95 % probability of no pounding": shown.length(e.required_gap),
         "paper's F_e (Eq. 14)": shown.force(e.paper.force_expected),
-        "Monte Carlo check": "not run",
+        "Monte Carlo mean F_max": shown.force(check.force_max_mean),
+        "Monte Carlo 95 % interval of the mean": f"{shown.force(low)} to {shown.force(high)}",
+        "closed form against Monte Carlo": "agrees",
+        "Monte Carlo gap for 95 % no pounding": shown.length(check.required_gap),
+        "force the tool stands behind": shown.force(e.force_expected),
+        "gap the tool stands behind for 95 % no pounding": shown.length(check.gap_answer),
     }
+    assert f"{check.records} records, seed 1; pounding in 100 % of them" in text
     assert shown.force_unit in _summary(text)["expected extreme pounding force E[F_max]"]
+    # Given its check, the report runs none (a check of another estimate is refused).
+    given = dataclasses.replace(snapshot, check=check)
+    assert _summary(write_report(tmp_path / "given.html", given, units).read_text()) == _summary(text)
+    with pytest.raises(ValueError, match="another estimate"):
+        write_report(tmp_path / "other.html", dataclasses.replace(given, check=dataclasses.replace(check, closed_form_force=1.0)))
 
 
-def test_the_summary_checks_the_closed_form_against_a_monte_carlo_study(tmp_path):
+def test_the_summary_checks_the_closed_form_on_the_records_of_a_matching_study(tmp_path):
+    """A study at the case's own gap (as the dashboard passes one): the check runs on its records (count and seed),
+    so the verdict's numbers are the study's."""
     import dataclasses
 
     from pounding import simulate
-    from pounding.report import MonteCarloPoint, monte_carlo_check
+    from pounding.report import MonteCarloPoint
+    from pounding.studies.check import check_estimate
 
     case = load_case(DEFAULT_PRESET)
     study = MonteCarloPoint.from_result(simulate(case, records=20, seed=3))
     snapshot = dataclasses.replace(compute_snapshot(case), monte_carlo=(study,))
     rows = _summary(write_report(tmp_path / "r.html", snapshot).read_text())
     shown = display("SI")
-    assert rows["Monte Carlo mean F_max"] == shown.force(study.force_max_mean)
+    check = check_estimate(snapshot.estimate, records=20, seed=3)
+    assert rows["Monte Carlo mean F_max"] == shown.force(study.force_max_mean) == shown.force(check.force_max_mean)
     assert rows["Monte Carlo 95 % interval of the mean"] == f"{shown.force(study.force_low)} to {shown.force(study.force_high)}"
-    assert rows["closed form against Monte Carlo"] == monte_carlo_check(snapshot.estimate.force_expected, study).text
+    assert rows["closed form against Monte Carlo"] == ("agrees" if check.agrees else "does not agree")
+    assert rows["force the tool stands behind"] == shown.force(check.force_answer)
 
 
 def test_the_monte_carlo_check_says_within_or_how_far_below_or_above():
+    """The dashboard's older verdict on a study (dashboard/headline.py), kept until it takes EstimateCheck."""
     from pounding.report import MonteCarloPoint, monte_carlo_check
 
     study = MonteCarloPoint(gap=0.01, records=300, seed=1, force_max_mean=306.15e3, force_low=272.6e3, force_high=339.7e3,

@@ -12,6 +12,12 @@ dashboard's *Export* button and ``pounding report`` both call it.
 Nothing here computes physics: every number comes from the library. Units:
 SI inside; :class:`Display` scales for the page (forces in kN/MN or kgf).
 
+A report always carries the verdict: :func:`with_check` runs the library's
+Monte Carlo check of the estimate (:func:`pounding.studies.check.check_estimate`)
+unless the snapshot has it; the force-against-gap figure draws the closed form
+with the band of its measured accuracy and Monte Carlo points where studies are
+at hand (:func:`gap_points`).
+
 This package imports no plotting library at load: Bokeh is imported when
 figures are built or a report is written.
 
@@ -37,10 +43,12 @@ from pounding.report.snapshot import (
     MonteCarloPoint,
     Snapshot,
     compute_snapshot,
+    curve_gaps,
     gap_grid,
+    gap_points,
 )
 from pounding.report.static import REPORT_NOTE, report_html, write_report
-from pounding.report.summary import MonteCarloCheck, monte_carlo_check
+from pounding.report.summary import MonteCarloCheck, monte_carlo_check, verdict_html, with_check
 
 __all__ = [
     "CaseChange",
@@ -62,10 +70,14 @@ __all__ = [
     "case_provenance",
     "Snapshot",
     "compute_snapshot",
+    "curve_gaps",
     "display",
     "gap_grid",
+    "gap_points",
     "monte_carlo_check",
     "report_html",
     "result_html",
+    "verdict_html",
+    "with_check",
     "write_report",
 ]

@@ -9,6 +9,7 @@ import math
 from pounding.display_units import Display, display
 from pounding.report.snapshot import MonteCarloPoint, Snapshot
 from pounding.simulation.monte_carlo import DesignGap
+from pounding.studies.check import EstimateCheck
 
 # --- the result card -----------------------------------------------------------
 
@@ -24,6 +25,7 @@ def result_html(
     monte_carlo_note: str = "",
     design_gap: DesignGap | None = None,
     design_gap_note: str = "",
+    check: EstimateCheck | None = None,
 ) -> str:
     """The result card: recommended and paper's F_e side by side, each with its chain.
 
@@ -71,6 +73,14 @@ def result_html(
             f'<span class="mc-mean">{d.force(monte_carlo.force_max_mean)}</span> '
             f"(95 % CI {d.force(monte_carlo.force_low)} to {d.force(monte_carlo.force_high)}; "
             f"{monte_carlo.records} records, seed {monte_carlo.seed}; pounding in {100 * monte_carlo.pounding_fraction:.0f} %)"
+        )
+    elif check is not None:
+        low, high = check.force_max_confidence_interval
+        study = f"{check.records} records" + ("" if check.seed is None else f", seed {check.seed}")
+        mc = (
+            f'<span class="mc-mean">{d.force(check.force_max_mean)}</span> '
+            f"(95 % CI {d.force(low)} to {d.force(high)}; {study}; pounding in {100 * check.pounding_fraction:.0f} %); "
+            f"the closed form {'agrees' if check.agrees else 'does not agree'}"
         )
     else:
         mc = html.escape(monte_carlo_note or "not run")

@@ -6,6 +6,7 @@ Bokeh is imported when the figures are built."""
 from __future__ import annotations
 
 import html
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -146,13 +147,36 @@ def _gap_caption(snapshot: Snapshot, d: Display) -> str:
             f"{d.length(e.required_gap)} (vertical dash-dot line).")
     if paper is not None:
         text += f" The paper's F_e, independent of the gap (dashed): {d.force(paper)}."
+    if snapshot.gap_accuracy:
+        text += (f" Shaded: where the Monte Carlo mean lay, by the closed form's errors measured in each gap's regime "
+                 f"({_band_words(snapshot, d)}).")
     study = matching_study(snapshot)
     if study is not None:
-        text += (f" Square: the Monte Carlo mean F_max of {study.records} records, {d.force(study.force_max_mean)} "
+        text += (f" Square at this gap: the Monte Carlo mean F_max of {study.records} records, {d.force(study.force_max_mean)} "
                  f"(95 % interval {d.force(study.force_low)} to {d.force(study.force_high)}).")
+    others = [m for m in snapshot.monte_carlo if m is not study and math.isfinite(m.force_low)]
+    if others:
+        records = sorted({m.records for m in others})
+        text += (f" Squares at {len(others)} other gap(s): the Monte Carlo mean F_max of "
+                 f"{' or '.join(str(r) for r in records)} records each with its 95 % interval ("
+                 + "; ".join(f"{d.length(m.gap)}: {d.force(m.force_max_mean)}" for m in others) + ").")
     if snapshot.design_gap is not None:
         text += f" Black dash-dot line: the Monte Carlo gap for the same target, {d.length(snapshot.design_gap.gap)}."
     return text
+
+
+def _band_words(snapshot: Snapshot, d: Display) -> str:
+    """Each regime of the curve once: its gaps, its measured range of errors and the band at its first gap."""
+    gaps, (low, high) = snapshot.gap_curve.gaps, snapshot.gap_band()
+    words, seen = [], set()
+    for index, measured in enumerate(snapshot.gap_accuracy):
+        if measured.regime in seen:
+            continue
+        seen.add(measured.regime)
+        top = "no upper bound" if not math.isfinite(high[index]) else d.force(high[index])
+        words.append(f"{measured.regime} from {d.length(gaps[index])}: closed form {100 * measured.low:+.0f} % to "
+                     f"{100 * measured.high:+.0f} % off Monte Carlo, so {d.force(low[index])} to {top} there")
+    return "; ".join(words)
 
 
 def figures_html(figures: list[ReportFigure]) -> tuple[str, str, str]:

@@ -8,12 +8,12 @@ import math
 import numpy as np
 
 from pounding.display_units import display
+from pounding.report.curve_charts import BAND_LABEL, band_label
 from pounding.report.snapshot import Snapshot
 from pounding.simulation.monte_carlo import DesignGap, TimeHistory
 from pounding.units import STANDARD_GRAVITY
 
 # --- plots ---------------------------------------------------------------------
-
 
 class Figures:
     """The Bokeh figures of a snapshot (canvas backend) and their data sources.
@@ -41,6 +41,7 @@ class Figures:
         cds = lambda **columns: ColumnDataSource(data=columns)  # noqa: E731
         self.sources = {
             "gap": cds(gap=[], force=[], paper=[], probability=[]),
+            "band": cds(gap=[], low=[], high=[]),
             "current": cds(gap=[], force=[]),
             "marker": cds(gap=[], force=[]),
             "required": cds(gap=[], probability=[]),
@@ -62,6 +63,8 @@ class Figures:
         g = figure(title="Expected extreme pounding force against the gap", height=340, **common)
         g.extra_y_ranges = {"probability": Range1d(0.0, 1.02)}
         g.add_layout(LinearAxis(y_range_name="probability", axis_label="probability of pounding [-]"), "right")
+        band = g.varea("gap", "low", "high", source=src["band"], fill_color="#1f77b4", fill_alpha=0.15,
+                       legend_label=BAND_LABEL)
         g.line("gap", "force", source=src["gap"], color="#1f77b4", line_width=2, legend_label="recommended E[F_max]")
         g.line("gap", "paper", source=src["gap"], color="#d62728", line_dash="dashed", line_width=2, legend_label="paper F_e (gap-independent)")
         g.line("gap", "probability", source=src["gap"], color="#2ca02c", y_range_name="probability", legend_label="probability of pounding")
@@ -82,6 +85,9 @@ class Figures:
             item.label.value: item for item in g.legend[0].items if item.label.value.startswith("Monte Carlo")
         }
         g.add_tools(HoverTool(tooltips=[("gap", "@gap"), ("force", "@force")]))
+        # The band follows the regime's measured range, unbounded above in some: the axis fits the curves, not it.
+        g.y_range.renderers = [r for r in g.renderers if r is not band and getattr(r, "y_range_name", "default") == "default"]
+        self._band_legend = next(item for item in g.legend[0].items if item.label.value == BAND_LABEL)
         self.gap = g
 
         self.psd_ground = figure(title="Ground acceleration PSD (two-sided, Eq. 7)", height=300, x_axis_type="log", y_axis_type="log", **common)
@@ -144,6 +150,16 @@ class Figures:
         paper = np.nan if curve.paper_force_expected is None else curve.paper_force_expected / fs
         force = curve.force_expected / fs
         _refill(src["gap"], gap=curve.gaps / ls, force=force, paper=np.full(curve.gaps.size, paper), probability=curve.pounding_probability)
+        if snapshot.gap_accuracy:
+            from bokeh.core.properties import value
+
+            low, high = snapshot.gap_band()
+            ceiling = 10.0 * max(float(np.nanmax(curve.force_expected)), 1e-300)  # "unbounded" drawn off the axis
+            _refill(src["band"], gap=curve.gaps / ls, low=low / fs, high=np.minimum(high, ceiling) / fs)
+            self._band_legend.label = value(band_label(snapshot.gap_accuracy))  # a text, not a column
+        else:
+            _refill(src["band"], gap=[], low=[], high=[])
+        self._band_legend.visible = bool(snapshot.gap_accuracy)
         gap = snapshot.case.contact.gap / ls
         _refill(src["current"], gap=[gap], force=[snapshot.estimate.force_expected / fs])
         top = np.nanmax([*force, paper, 0.0])

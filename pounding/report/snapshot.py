@@ -3,6 +3,8 @@ case and keeps everything shown for it in a :class:`Snapshot` (all SI)."""
 
 from __future__ import annotations
 
+import dataclasses
+import numbers
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -12,8 +14,11 @@ from pounding.case.case import Case
 from pounding.closed_form.estimator import Estimate, GapCurve, estimate
 from pounding.closed_form.linearization import equivalent_storey_force
 from pounding.closed_form.pair import LinearizedPair
-from pounding.errors import SimulationError
-from pounding.simulation.monte_carlo import DesignGap, SimulationResult, TimeHistory, simulate_record
+from pounding.closed_form.regimes import accuracy_band, measured_range
+from pounding.errors import ArgumentError, SimulationError
+from pounding.simulation.monte_carlo import DesignGap, SimulationResult, TimeHistory, simulate, simulate_record
+from pounding.simulation.plan import MonteCarloPlan, as_plan
+from pounding.studies.check import EstimateCheck
 
 DEFAULT_SEED = defaults.REPORT_SEED
 """Seed of the study whose record the hysteresis loops show."""
@@ -80,6 +85,12 @@ class Snapshot:
     design_gap : DesignGap or None
         The Monte Carlo design gap of this case for the estimate's target
         probability, to show beside the closed-form gap.
+    check : EstimateCheck or None
+        The estimate checked against the Monte Carlo of this case (:func:`~pounding.studies.check.check_estimate`):
+        the report's verdict. None until a report is made (:func:`~.summary.with_check` runs it).
+    gap_accuracy : tuple of MeasuredRange
+        The measured accuracy of the recommended E[F_max] at each gap of ``gap_curve``
+        (:func:`~pounding.closed_form.regimes.measured_range`): the figure's band.
     """
 
     case: Case
@@ -96,12 +107,52 @@ class Snapshot:
     record: int = DEFAULT_RECORD
     monte_carlo: tuple = field(default=())
     design_gap: DesignGap | None = None
+    check: EstimateCheck | None = None
+    gap_accuracy: tuple = ()
+
+    def gap_band(self) -> tuple[np.ndarray, np.ndarray]:
+        """Where the Monte Carlo E[F_max] lay at each gap of ``gap_curve`` given the closed form's, by the errors
+        measured in each gap's regime [N] (:func:`~pounding.closed_form.regimes.accuracy_band`)."""
+        return accuracy_band(self.gap_curve.force_expected, self.gap_accuracy)
+
+
+def _widest_gap(case: Case, result: Estimate) -> float:
+    """The force-against-gap curve's widest gap [m]: past the required gap and twice the case's gap."""
+    return max(1.25 * result.required_gap, 2.0 * case.contact.gap, 1e-3)
 
 
 def gap_grid(case: Case, result: Estimate, points: int = GAP_POINTS) -> np.ndarray:
     """Gaps [m] from 0 past the required gap and twice the case's gap, with the case's gap among them."""
-    top = max(1.25 * result.required_gap, 2.0 * case.contact.gap, 1e-3)
-    return np.unique(np.append(np.linspace(0.0, top, points), case.contact.gap))
+    return np.unique(np.append(np.linspace(0.0, _widest_gap(case, result), points), case.contact.gap))
+
+
+def curve_gaps(case: Case, result: Estimate, count: int) -> np.ndarray:
+    """``count`` gaps [m] evenly across the force-against-gap curve, 0 excluded: where :func:`gap_points` may put
+    Monte Carlo points."""
+    if count < 1:
+        raise ArgumentError("count", f"must be at least 1, got {count}")
+    return np.linspace(0.0, _widest_gap(case, result), count + 1)[1:]
+
+
+def gap_points(case: Case, gaps, plan: MonteCarloPlan | int | None = None, **options) -> tuple[MonteCarloPoint, ...]:
+    """Monte Carlo points of the force-against-gap curve: :func:`~pounding.simulation.monte_carlo.simulate` of
+    ``case`` with its gap set to each of ``gaps`` [m], by ``plan`` (a number: its records; fields by name as
+    ``simulate`` takes them), the same records (seed) at every gap. ``progress(done, total)`` counts over all gaps."""
+    if isinstance(plan, numbers.Integral) and not isinstance(plan, bool):
+        plan, options = None, {"records": plan, **options}
+    plan = as_plan(plan, options)
+    gaps = [float(g) for g in np.asarray(gaps, dtype=float).ravel()]
+    report, points = plan.progress, []
+    for index, gap in enumerate(gaps):
+        at_gap = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=gap))
+        progress = None if report is None else _offset(report, index, len(gaps))
+        points.append(MonteCarloPoint.from_result(simulate(at_gap, dataclasses.replace(plan, progress=progress))))
+    return tuple(points)
+
+
+def _offset(report, index: int, count: int):
+    """``progress(done, total)`` of the study at the ``index``-th of ``count`` gaps, as a count over them all."""
+    return lambda done, total: report(index * total + done, count * total)
 
 
 def compute_snapshot(
@@ -125,6 +176,8 @@ def compute_snapshot(
     linearized = pair.buildings
     result = estimate(pair, target_probability) if result is None else result
     curve = result.gap_curve(gap_grid(case, result))
+    sigma_x = result.sigma_relative_displacement
+    accuracy = tuple(measured_range(pair, gap, sigma_x) for gap in curve.gaps)
     omega = np.geomspace(0.3, case.excitation.cutoff_frequency, PSD_POINTS)
     psd_ground = np.asarray(case.excitation.spectrum.psd(omega), dtype=float)
     psd_velocity = pair.psd_relative_velocity(omega)
@@ -140,5 +193,5 @@ def compute_snapshot(
         )
     return Snapshot(
         case, linearized, result, curve, omega, psd_ground, psd_velocity, history, history_error, equivalent, seed, record,
-        tuple(monte_carlo),
+        tuple(monte_carlo), gap_accuracy=accuracy,
     )

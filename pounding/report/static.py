@@ -1,6 +1,7 @@
 """The static report: :func:`write_report` writes a snapshot to one
 self-contained HTML file for a design note: the title and where the inputs
-came from (a preset, modified or not: :mod:`.provenance`), a summary, the
+came from (a preset, modified or not: :mod:`.provenance`), a summary led by the
+verdict (the estimate checked against the Monte Carlo of its case), the
 inputs as a table, the results, numbered figures with captions, the method;
 the tool's version, the date and the command that made it. Everything but the
 plots is static HTML (read without JavaScript); it prints on A4
@@ -32,7 +33,7 @@ from pounding.report.method_section import method_notes
 from pounding.report.print_css import REPORT_CSS
 from pounding.report.provenance import ReportProvenance
 from pounding.report.snapshot import Snapshot, compute_snapshot
-from pounding.report.summary import summary_html
+from pounding.report.summary import summary_html, with_check
 
 # --- the static report ---------------------------------------------------------
 
@@ -131,7 +132,11 @@ def _made_html(provenance: ReportProvenance) -> str:
 def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None,
                 provenance: ReportProvenance | None = None) -> str:
     """The report as one HTML document: every script and style inline; the summary, the tables and the
-    figures' captions are static HTML, read without JavaScript; the plots are drawn by Bokeh."""
+    figures' captions are static HTML, read without JavaScript; the plots are drawn by Bokeh.
+
+    The summary leads with the verdict: the snapshot's Monte Carlo check, run here when it has none
+    (:func:`~.summary.with_check`: on the records of a study at the case's gap, else as many as its precision asks)."""
+    snapshot = with_check(snapshot)
     case = snapshot.case
     provenance = provenance or case_provenance_from_name(case)
     title = report_title(case, provenance, title)
@@ -142,14 +147,13 @@ def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None,
         else f"The representative record failed: {html.escape(snapshot.history_error)}"
     )
     figures, script, library = figures_html(report_figures(snapshot, units))
-    matching = [m for m in snapshot.monte_carlo if m.gap == case.contact.gap]
     body = (
         f"<header><h1>{html.escape(title)}</h1>{_made_html(provenance)}{_provenance_html(case, provenance)}"
         f'<p class="report-note"><i>{REPORT_NOTE}</i></p></header>'
         '<section class="summary"><h2>1. Summary</h2>' + summary_html(snapshot, units) + "</section>"
         '<section class="inputs"><h2>2. Inputs</h2>' + changes_html(provenance) + inputs_html(case, units, terms) + "</section>"
         '<section class="results"><h2>3. Results in detail</h2>'
-        + result_html(snapshot, units, matching[-1] if matching else None, "not run for this report", snapshot.design_gap)
+        + result_html(snapshot, units, design_gap=snapshot.design_gap, check=snapshot.check)
         + f"<p>{history_note}</p><h3>Distribution of the extreme force</h3>" + quantiles_table(snapshot, units) + "</section>"
         '<section class="figures"><h2>4. Figures</h2>' + figures + "</section>"
         '<section class="method">' + method_notes(snapshot.estimate.accuracy_regime) + "</section>"
@@ -177,7 +181,8 @@ def write_report(path: str | os.PathLike, snapshot: Snapshot | Case, units: str 
     path : str or PathLike
         The HTML file to write.
     snapshot : Snapshot or Case
-        What to report (:func:`~.snapshot.compute_snapshot`).
+        What to report (:func:`~.snapshot.compute_snapshot`). Without its Monte Carlo check (``snapshot.check``)
+        the check is run here (:func:`~.summary.with_check`; about a second for the presets).
     units : str
         "SI" or "kgf-cm-s": the units every number is shown in.
     title : str, optional

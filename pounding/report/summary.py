@@ -1,23 +1,166 @@
 """The report's summary: the numbers a design note quotes, as a static HTML
-table (readable without JavaScript), and the Monte Carlo check of the closed
-form (:func:`monte_carlo_check`), in the report's display units."""
+table (readable without JavaScript), led by the verdict: the estimate checked
+against the Monte Carlo of its case (:func:`with_check`, the library's
+:class:`~pounding.studies.check.EstimateCheck`) and the force and gap the tool
+stands behind, in the report's display units."""
 
 from __future__ import annotations
 
+import dataclasses
 import html
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from pounding import defaults
 from pounding.display_units import Display, display
 from pounding.report.snapshot import MonteCarloPoint, Snapshot
+from pounding.simulation.plan import MonteCarloPlan
+from pounding.studies.check import EstimateCheck, check_estimate, unpounded_bound
 
-__all__ = ["MonteCarloCheck", "matching_study", "monte_carlo_check", "summary_rows", "summary_html"]
+__all__ = ["MonteCarloCheck", "matching_study", "monte_carlo_check", "summary_rows", "summary_html", "verdict_html",
+           "with_check"]
+
+
+def matching_study(snapshot: Snapshot) -> MonteCarloPoint | None:
+    """The last Monte Carlo study of the snapshot at the case's own gap, or None."""
+    points = [m for m in snapshot.monte_carlo if m.gap == snapshot.case.contact.gap]
+    return points[-1] if points else None
+
+
+def with_check(snapshot: Snapshot, progress: Callable[[int, int], None] | None = None) -> Snapshot:
+    """The snapshot with its verdict (``snapshot.check``): as given; else :func:`~pounding.studies.check.check_estimate`
+    of its estimate on the records of the matching study (:func:`matching_study`: its count and seed, so the numbers
+    are the study's); else on as many records as the check's precision asks, seeded as the snapshot
+    (``defaults.REPORT_SEED`` unless given). ``progress(done, total)`` counts the check's records.
+
+    Raises ValueError where the given check is of another estimate (another force or target probability)."""
+    check = snapshot.check
+    if check is not None:
+        e = snapshot.estimate
+        if (check.closed_form_force, check.target_probability) != (e.force_expected, e.target_probability):
+            raise ValueError("snapshot.check is the check of another estimate: its closed-form force or target probability "
+                             "differs from the snapshot's")
+        return snapshot
+    study = matching_study(snapshot)
+    plan = (MonteCarloPlan(None, snapshot.seed, progress=progress) if study is None
+            else MonteCarloPlan(study.records, study.seed, progress=progress))
+    return dataclasses.replace(snapshot, check=check_estimate(snapshot.estimate, plan))
+
+
+def _study_words(check: EstimateCheck) -> str:
+    plural = "s" if check.records > 1 else ""
+    return (f"{check.records} recorded motion{plural}" if check.seed is None
+            else f"{check.records} record{plural}, seed {check.seed}")
+
+
+def _sources(check: EstimateCheck) -> tuple[str, str]:
+    """Where the force and the gap the tool stands behind come from, in words."""
+    force = ("the closed form, which agrees with the Monte Carlo check" if check.agrees
+             else "the Monte Carlo mean: the closed form does not agree with it")
+    gap = ("the closed form's, which covers the records' own" if check.gap_source == "closed form"
+           else "the records' own: the closed form's falls short")
+    return force, gap
+
+
+def verdict_html(snapshot: Snapshot, units: str = "SI") -> str:
+    """The verdict, beside the summary's headline: the force and the gap the tool stands behind and where each comes
+    from, then the check in two sentences (the Monte Carlo mean, its 95 % interval and records, whether the closed
+    form agrees; the records' gap): :meth:`~pounding.studies.check.EstimateCheck.sentences`. Needs ``snapshot.check``
+    (:func:`with_check`)."""
+    check, d = snapshot.check, display(units)
+    if check is None:
+        raise ValueError("the snapshot has no check: make it with with_check(snapshot)")
+    force_from, gap_from = _sources(check)
+    force_sentence, gap_sentence = check.sentences(d.force, d.length)
+    css = "verdict-within" if check.agrees else "verdict-outside"
+    return (f'<div class="verdict"><p class="answers {css}">The tool stands behind an expected extreme pounding force '
+            f'of <b><span class="force-answer">{html.escape(d.force(check.force_answer))}</span></b> '
+            f'(<span class="answer-source">{html.escape(force_from)}</span>) and a gap of '
+            f'<b><span class="gap-answer">{html.escape(d.length(check.gap_answer))}</span></b> for '
+            f"{100 * check.target_probability:g} % probability of no pounding "
+            f'(<span class="gap-source">{html.escape(gap_from)}</span>).</p>'
+            f'<p class="check-force">{html.escape(force_sentence)}</p><p class="check-gap">{html.escape(gap_sentence)}</p></div>')
+
+
+def summary_rows(snapshot: Snapshot, units: str = "SI") -> list[tuple[str, str, str]]:
+    """The summary as (quantity, value with its unit, note) rows; the Monte Carlo's from ``snapshot.check`` when
+    made (:func:`with_check`)."""
+    d = display(units)
+    e, case = snapshot.estimate, snapshot.case
+    distribution = e.force_max_distribution
+    duration = case.excitation.duration
+    rows = [("expected extreme pounding force E[F_max]", d.force(e.force_expected), "recommended (gap-aware) closed form")]
+    for key in defaults.FORCE_QUANTILES:
+        probability = float(key)
+        rows.append((f"F_max, {100 * probability:g} % fractile", d.force(distribution.quantile(probability)),
+                     "closed-form distribution of F_max"))
+    rows += [
+        ("probability of pounding", f"{100 * e.pounding_probability:.3g} %",
+         f"during the {duration:g} s record, at the gap of {d.length(case.contact.gap)}"),
+        (f"gap needed for {100 * e.target_probability:g} % probability of no pounding", d.length(e.required_gap),
+         f"closed form; SRSS rule {d.length(e.separation_rules['srss'])}, ABS {d.length(e.separation_rules['abs'])}"),
+        ("paper's F_e (Eq. 14)", d.force(e.paper.force_expected), "for comparison: independent of the gap"),
+    ]
+    check = snapshot.check
+    if check is None:
+        rows.append(("Monte Carlo check", "not run", "no records were simulated"))
+    else:
+        rows += _check_rows(check, d)
+    gap = snapshot.design_gap
+    if gap is not None:
+        rows.append((f"Monte Carlo gap for {100 * gap.target_probability:g} % no pounding (free motion)", d.length(gap.gap),
+                     f"{gap.n_records} records' free motion, seed {gap.seed}; 90 % upper bound {d.length(gap.upper_bound)}"))
+    return rows
+
+
+def _check_rows(check: EstimateCheck, d: Display) -> list[tuple[str, str, str]]:
+    target = f"{100 * check.target_probability:g} %"
+    low, high = check.force_max_confidence_interval
+    interval = f"{d.force(low)} to {d.force(high)}" if math.isfinite(high - low) else "n/a (one record)"
+    if check.force_max_mean > 0.0:
+        side = "under" if check.error < 0 else "over"
+        how = (f"{100 * abs(check.error):.0f} % {side} the Monte Carlo mean; it agrees inside the 95 % interval or "
+               f"within {100 * defaults.CHECK_TOLERANCE:g} %")
+    else:
+        how = (f"no record pounded, so pounding under {100 * unpounded_bound(check.records):.1f} % (95 % confidence); the "
+               f"closed form's probability is {100 * check.closed_form_pounding_probability:.1f} %")
+    force_from, gap_from = _sources(check)
+    return [
+        ("Monte Carlo mean F_max", d.force(check.force_max_mean),
+         f"{_study_words(check)}; pounding in {100 * check.pounding_fraction:.0f} % of them"),
+        ("Monte Carlo 95 % interval of the mean", interval, "confidence interval of the mean F_max"),
+        ("closed form against Monte Carlo", "agrees" if check.agrees else "does not agree", how),
+        (f"Monte Carlo gap for {target} no pounding", d.length(check.required_gap), "the same records"),
+        ("force the tool stands behind", d.force(check.force_answer), force_from),
+        (f"gap the tool stands behind for {target} no pounding", d.length(check.gap_answer), gap_from),
+    ]
+
+
+def summary_html(snapshot: Snapshot, units: str = "SI") -> str:
+    """The verdict (:func:`verdict_html`, when the snapshot has its check), the summary table, and the estimator's
+    warnings below it."""
+    cells = []
+    for quantity, value, note in summary_rows(snapshot, units):
+        css = "number"
+        if quantity == "closed form against Monte Carlo":
+            css = "verdict-within" if value == "agrees" else "verdict-outside"
+        cells.append(f'<tr><th>{html.escape(quantity)}</th><td class="{css}">{html.escape(value)}</td>'
+                     f"<td>{html.escape(note)}</td></tr>")
+    warnings = "".join(f'<p class="warning">&#9888; {html.escape(w)}</p>' for w in snapshot.estimate.warnings)
+    verdict = verdict_html(snapshot, units) if snapshot.check is not None else ""
+    return (verdict + '<table class="summary"><thead><tr><th>quantity</th><th>value</th><th>note</th></tr></thead><tbody>'
+            + "".join(cells) + "</tbody></table>" + warnings)
+
+
+# --- the dashboard's older verdict on a study ----------------------------------------------------
 
 
 @dataclass(frozen=True)
 class MonteCarloCheck:
-    """Where a closed-form E[F_max] lies against a Monte Carlo study of the same case.
+    """Where a closed-form E[F_max] lies against a Monte Carlo study of the same case: the dashboard's headline
+    (dashboard/headline.py) until it takes the library's :class:`~pounding.studies.check.EstimateCheck`, which the
+    report's verdict is (:func:`with_check`); to be removed then.
 
     Attributes
     ----------
@@ -46,65 +189,3 @@ def monte_carlo_check(force_expected: float, study: MonteCarloPoint) -> MonteCar
         return MonteCarloCheck(True, relative, f"within the Monte Carlo 95 % interval ({share})")
     side = "below" if force_expected < study.force_low else "above"
     return MonteCarloCheck(False, relative, f"{side} the Monte Carlo 95 % interval: {share}")
-
-
-def matching_study(snapshot: Snapshot) -> MonteCarloPoint | None:
-    """The last Monte Carlo study of the snapshot at the case's own gap, or None."""
-    points = [m for m in snapshot.monte_carlo if m.gap == snapshot.case.contact.gap]
-    return points[-1] if points else None
-
-
-def summary_rows(snapshot: Snapshot, units: str = "SI") -> list[tuple[str, str, str]]:
-    """The summary as (quantity, value with its unit, note) rows."""
-    d = display(units)
-    e, case = snapshot.estimate, snapshot.case
-    distribution = e.force_max_distribution
-    duration = case.excitation.duration
-    rows = [("expected extreme pounding force E[F_max]", d.force(e.force_expected), "recommended (gap-aware) closed form")]
-    for key in defaults.FORCE_QUANTILES:
-        probability = float(key)
-        rows.append((f"F_max, {100 * probability:g} % fractile", d.force(distribution.quantile(probability)),
-                     "closed-form distribution of F_max"))
-    rows += [
-        ("probability of pounding", f"{100 * e.pounding_probability:.3g} %",
-         f"during the {duration:g} s record, at the gap of {d.length(case.contact.gap)}"),
-        (f"gap needed for {100 * e.target_probability:g} % probability of no pounding", d.length(e.required_gap),
-         f"closed form; SRSS rule {d.length(e.separation_rules['srss'])}, ABS {d.length(e.separation_rules['abs'])}"),
-        ("paper's F_e (Eq. 14)", d.force(e.paper.force_expected), "for comparison: independent of the gap"),
-    ]
-    study = matching_study(snapshot)
-    if study is None:
-        rows.append(("Monte Carlo check", "not run", "no records were simulated for this report"))
-    else:
-        check = monte_carlo_check(e.force_expected, study)
-        rows += [
-            ("Monte Carlo mean F_max", d.force(study.force_max_mean),
-             f"{study.records} records, seed {study.seed}; pounding in {100 * study.pounding_fraction:.0f} % of them"),
-            ("Monte Carlo 95 % interval of the mean", _interval(d, study), "confidence interval of the mean F_max"),
-            ("closed form against Monte Carlo", check.text, ""),
-        ]
-    gap = snapshot.design_gap
-    if gap is not None:
-        rows.append((f"Monte Carlo gap for {100 * gap.target_probability:g} % no pounding", d.length(gap.gap),
-                     f"{gap.n_records} records' free motion, seed {gap.seed}; 90 % upper bound {d.length(gap.upper_bound)}"))
-    return rows
-
-
-def _interval(d: Display, study: MonteCarloPoint) -> str:
-    if not (math.isfinite(study.force_low) and math.isfinite(study.force_high)):
-        return "n/a (too few records)"
-    return f"{d.force(study.force_low)} to {d.force(study.force_high)}"
-
-
-def summary_html(snapshot: Snapshot, units: str = "SI") -> str:
-    """The summary table, with the estimator's warnings below it."""
-    cells = []
-    for quantity, value, note in summary_rows(snapshot, units):
-        css = "number"
-        if quantity == "closed form against Monte Carlo":
-            css = "verdict-within" if value.startswith("within") else "verdict-outside"
-        cells.append(f'<tr><th>{html.escape(quantity)}</th><td class="{css}">{html.escape(value)}</td>'
-                     f"<td>{html.escape(note)}</td></tr>")
-    warnings = "".join(f'<p class="warning">&#9888; {html.escape(w)}</p>' for w in snapshot.estimate.warnings)
-    return ('<table class="summary"><thead><tr><th>quantity</th><th>value</th><th>note</th></tr></thead><tbody>'
-            + "".join(cells) + "</tbody></table>" + warnings)
