@@ -328,29 +328,39 @@ def _report(args) -> int:
         check_probability(args.design_gap, "--design-gap")
         if not args.records:
             raise ArgumentError("--design-gap", "needs records: give --records N (N >= 1)")
+    if args.gap_points and not args.records:
+        raise ArgumentError("--gap-points", "needs records: give --records N (N >= 1), the records at each gap")
     case = load_case(args.case)
     check_target(args.output, "--output", probe=True)  # before any work: "", a device, a folder, read-only are refused
     path = Path(args.output)
     # The plotting libraries load here only: every other command stays fast.
-    from pounding.report import MonteCarloPoint, compute_snapshot, write_report
+    from pounding.report import MonteCarloPoint, compute_snapshot, curve_gaps, gap_points, with_check, write_report
 
     # The estimate first (milliseconds): if it cannot be made, no simulation is wasted.
     snapshot = compute_snapshot(case, target_probability=args.design_gap or defaults.TARGET_PROBABILITY)
 
-    def run(study):
-        with progress_bar(args.records) as progress:
+    def run(study, total=None):
+        with progress_bar(total or args.records) as progress:
             return study(case, plan=MonteCarloPlan(args.records, args.seed, progress=progress))
 
     monte_carlo = (MonteCarloPoint.from_result(run(simulate)),) if args.records else ()
+    if args.gap_points:
+        gaps = curve_gaps(case, snapshot.estimate, args.gap_points)
+        monte_carlo += run(partial(gap_points, gaps=gaps), args.gap_points * args.records)
     free = run(partial(design_gap, target_probability=args.design_gap)) if args.design_gap is not None else None
     snapshot = replace(snapshot, monte_carlo=monte_carlo, design_gap=free)
+    with progress_bar() as progress:  # the verdict: on --records' records, else as many as its precision asks
+        snapshot = with_check(snapshot, progress)
     write_report(path, snapshot, units=args.units, field="--output", provenance=_report_provenance(args))
     if args.json:
         figures = snapshot.estimate.to_dict()
         if monte_carlo:
             figures["monte_carlo"] = dict(monte_carlo[0].__dict__)
+        if args.gap_points:
+            figures["monte_carlo_gap_points"] = [dict(point.__dict__) for point in monte_carlo[1:]]
         if free is not None:
             figures["monte_carlo_design_gap"] = free.to_dict()
+        figures.update(check=snapshot.check.to_dict(), **snapshot.check.answers())
         print(json.dumps({"report": str(path), **figures}))
     else:
         print(f"wrote {path} ({path.stat().st_size / 1e6:.1f} MB)")
@@ -368,6 +378,7 @@ def _report_provenance(args):
 
     command = shlex.join(["pounding", "report", args.case, "-o", args.output, "--units", args.units]
                          + (["--records", str(args.records), "--seed", str(args.seed)] if args.records else [])
+                         + (["--gap-points", str(args.gap_points)] if args.gap_points else [])
                          + (["--design-gap", f"{args.design_gap:g}"] if args.design_gap is not None else []))
     if preset_text(args.case) is not None:
         return ReportProvenance(args.case, args.case, (), command)

@@ -176,20 +176,28 @@ def parser() -> argparse.ArgumentParser:
         "report",
         help="write a static, self-contained HTML report of a case",
         description="One HTML file for a design note (all JS/CSS inline, opens offline, prints on A4): a summary "
-        "(E[F_max], its fractiles, the pounding probability, the gap needed and, with --records, the Monte Carlo "
-        "check), the inputs as a table (and what changed from the preset), numbered figures with captions, the "
-        "method and its measured accuracy; the version, date and this command. Written atomically.",
+        "led by the verdict (the estimate checked against the Monte Carlo of the same case, as estimate --check: "
+        "whether the closed form agrees, the force and gap the tool stands behind), E[F_max], its fractiles, the "
+        "pounding probability and the gap needed; the inputs as a table (and what changed from the preset), numbered "
+        "figures with captions (the closed form with the band of its measured accuracy), the method and its measured "
+        "accuracy; the version, date and this command. Written atomically.",
         epilog="examples:\n  pounding report section5-T2-0.4 -o report.html\n"
         "  pounding report case.toml -o case.html --records 300 --units kgf-cm-s\n"
+        "  pounding report section5-T2-0.4 -o report.html --records 100 --gap-points 4\n"
         "  pounding report section5-T2-0.4 -o report.html --records 300 --design-gap 0.95",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     report.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
     report.add_argument("-o", "--output", required=True, help="the HTML file to write")
     report.add_argument("--records", type=whole_number_type(0, defaults.MAX_RECORDS, "records"), default=0,
-                        help="Monte Carlo records to compare with (default 0: none)")
+                        help="Monte Carlo records of the check, shown in the figures too (default 0: the check runs as "
+                        f"many as its precision asks, {defaults.CHECK_FIRST_RECORDS} to {defaults.CHECK_MAX_RECORDS}; "
+                        "recorded motions: each once)")
     report.add_argument("--seed", type=_non_negative_int, default=defaults.REPORT_SEED,
-                        help=f"seed of the Monte Carlo study (default {defaults.REPORT_SEED})")
+                        help=f"seed of the Monte Carlo check and studies (default {defaults.REPORT_SEED})")
+    report.add_argument("--gap-points", type=whole_number_type(0), default=0, metavar="N",
+                        help="also Monte Carlo points at N gaps across the force-against-gap figure, --records each "
+                        "(needed), the same seed (default 0: none)")
     report.add_argument("--design-gap", type=float, metavar="P", default=None,
                         help="also the Monte Carlo gap for probability P of no pounding, in (0, 1), from the free motion of "
                         "the same --records (needed); P is then the target of the closed-form gap too")
