@@ -54,8 +54,10 @@ def test_the_report_carries_the_verdict_of_a_check_of_the_same_case_and_seed(tmp
     # near the headline: the summary opens with it
     summary = re.search(r'<section class="summary">(.*?)</section>', page, flags=re.DOTALL).group(1)
     assert summary.index('<div class="verdict">') < summary.index('<table class="summary">')
-    # the result card quotes the same study
+    # the result card quotes the same study, and the force-against-gap figure draws it at the case's gap
     assert _span(page, "mc-mean") == shown.force(check.force_max_mean)
+    assert (f"Square at this gap: the Monte Carlo mean F_max of {check.records} records (the summary check), "
+            f"{shown.force(check.force_max_mean)}") in _text(page)
 
 
 def test_where_the_closed_form_is_known_to_be_off_the_report_stands_behind_the_monte_carlo(tmp_path):

@@ -177,7 +177,11 @@ def spectrum_chart(spectrum, units: str = "SI"):
         rows = [r + [b] for r, b in zip(rows, bands)]
     plot.width = 900
     plot.legend.label_text_font_size = "8pt"
-    plot.add_layout(plot.legend[0], "right")
+    legend = plot.legend[0]
+    plot.center.remove(legend)
+    plot.add_layout(legend, "below")  # beside the plot its long entries (the band's regimes) would squeeze it
+    legend.orientation, legend.ncols = "horizontal", 2
+    plot.height += 80
     note = (f"Case {spectrum.case.name}: each building made stiffer or softer to the periods shown (masses, yield drifts, "
             "damping ratio, gap, restitution and ground motion held). Jankowski's pounding force response spectrum is "
             "the peak force of one record against the period; this is its mean and 84th percentile over the random "

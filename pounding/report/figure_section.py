@@ -18,7 +18,7 @@ from pounding.report.figures import Figures
 from pounding.report.hazard_section import SPECTRUM_RECORDS, hazard_figure, scaled_records_figure
 from pounding.report.inputs_section import SPECTRUM_NAMES, code_parameters
 from pounding.report.print_css import FIGURE_WIDTH
-from pounding.report.snapshot import Snapshot
+from pounding.report.snapshot import MonteCarloPoint, Snapshot
 from pounding.report.summary import matching_study
 
 __all__ = ["ReportFigure", "figures_html", "report_figures"]
@@ -59,7 +59,8 @@ def report_figures(snapshot: Snapshot, units: str = "SI") -> list[ReportFigure]:
     d = display(units)
     case, e = snapshot.case, snapshot.estimate
     plots = Figures()
-    plots.fill(snapshot, units, snapshot.monte_carlo, snapshot.design_gap)
+    checked = _checked_study(snapshot)
+    plots.fill(snapshot, units, snapshot.monte_carlo + ((checked,) if checked is not None else ()), snapshot.design_gap)
     shown = [ReportFigure("Distribution of the extreme pounding force F_max", _distribution_caption(snapshot, d),
                           (distribution_figure(snapshot, units),))]
     hazard = hazard_figure(case, snapshot.seed, units)
@@ -74,6 +75,7 @@ def report_figures(snapshot: Snapshot, units: str = "SI") -> list[ReportFigure]:
                 "record (grey), their mean (red), the design spectrum (black) and the expected spectrum of the process "
                 "the closed form takes (dashed).", (scaled,)))
         shown.append(ReportFigure("The ground motion's spectrum", _hazard_caption(snapshot), (hazard,)))
+    _legend_below(plots.gap)
     shown.append(ReportFigure("Expected extreme force and probability of pounding against the gap", _gap_caption(snapshot, d), (plots.gap,)))
     shown.append(ReportFigure(
         "Power spectral densities of the ground acceleration and of the relative velocity",
@@ -102,6 +104,24 @@ def report_figures(snapshot: Snapshot, units: str = "SI") -> list[ReportFigure]:
     for figure in shown:
         _fixed(figure.plots)
     return shown
+
+
+def _checked_study(snapshot: Snapshot) -> MonteCarloPoint | None:
+    """The summary's Monte Carlo check as a point at the case's gap, where no study there is drawn already."""
+    if snapshot.check is None or matching_study(snapshot) is not None:
+        return None
+    return MonteCarloPoint.from_check(snapshot.check, snapshot.case.contact.gap)
+
+
+def _legend_below(plot) -> None:
+    """The legend under the plot in two columns, as the dashboard has it: beside it, its long entries (the band's
+    regimes) would take half the page's width from the plot."""
+    legend = plot.legend[0]
+    if legend in plot.right:
+        plot.right.remove(legend)
+    plot.add_layout(legend, "below")
+    legend.orientation, legend.ncols, legend.label_text_font_size, legend.spacing, legend.padding = "horizontal", 2, "10px", 8, 4
+    plot.height += 90
 
 
 def _pga_g(snapshot: Snapshot) -> float:
@@ -151,9 +171,12 @@ def _gap_caption(snapshot: Snapshot, d: Display) -> str:
         text += (f" Shaded: where the Monte Carlo mean lay, by the closed form's errors measured in each gap's regime "
                  f"({_band_words(snapshot, d)}).")
     study = matching_study(snapshot)
-    if study is not None:
-        text += (f" Square at this gap: the Monte Carlo mean F_max of {study.records} records, {d.force(study.force_max_mean)} "
-                 f"(95 % interval {d.force(study.force_low)} to {d.force(study.force_high)}).")
+    checked = _checked_study(snapshot)
+    if study is not None or checked is not None:
+        shown = study or checked
+        text += (f" Square at this gap: the Monte Carlo mean F_max of {shown.records} records"
+                 f"{'' if study is not None else ' (the summary check)'}, {d.force(shown.force_max_mean)} "
+                 f"(95 % interval {d.force(shown.force_low)} to {d.force(shown.force_high)}).")
     others = [m for m in snapshot.monte_carlo if m is not study and math.isfinite(m.force_low)]
     if others:
         records = sorted({m.records for m in others})

@@ -56,6 +56,12 @@ class MonteCarloPoint:
             tuple(float(f) for f in result.force_max),
         )
 
+    @classmethod
+    def from_check(cls, check: EstimateCheck, gap: float) -> MonteCarloPoint:
+        """The study of an estimate's Monte Carlo check, at its case's ``gap`` [m] (its records' F_max not kept)."""
+        low, high = check.force_max_confidence_interval
+        return cls(gap, check.records, check.seed, check.force_max_mean, low, high, check.pounding_fraction)
+
 
 @dataclass(frozen=True, eq=False)
 class Snapshot:
