@@ -203,7 +203,8 @@ def _estimate(args) -> int:
     print(f"  pounding probability      {100 * result.pounding_probability:.1f} %")
     print(f"  gap for {100 * result.target_probability:g} % no pounding  {100 * result.required_gap:.2f} cm"
           f"   (SRSS {100 * rules['srss']:.2f} cm, ABS {100 * rules['abs']:.2f} cm, DDC {100 * rules['ddc']:.2f} cm)")
-    print(f"  accuracy                  {result.measured_accuracy}")
+    accuracy = result.measured_accuracy if check is None else result.accuracy.statement(with_verdict=True)
+    print(f"  accuracy                  {accuracy}")
     print("paper (Rahimi & Soltani 2016, Eq. 12-30)")
     if paper.unavailable is not None:
         print(f"  expected extreme force    n/a ({paper.unavailable})")

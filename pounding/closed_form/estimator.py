@@ -30,7 +30,7 @@ from pounding.closed_form.gap_aware import (
 )
 from pounding.closed_form.pair import LinearizedPair
 from pounding.closed_form.paper_method import PaperEstimate, check_michaelov_n1, paper_estimate
-from pounding.closed_form.regimes import assess, extreme_warnings, hazard_warnings
+from pounding.closed_form.regimes import MeasuredRange, assess, extreme_warnings, hazard_warnings
 from pounding.closed_form.response import ContactResponse
 from pounding.closed_form.separation import separation_rules
 from pounding.errors import ArgumentError, check_limit, check_probability
@@ -111,7 +111,10 @@ class Estimate:
         accuracy was measured alike.
     measured_accuracy : str
         How far from Monte Carlo the recommended force was measured in that
-        regime (docs/accuracy.md).
+        regime (docs/accuracy.md); a range wider than 30 % either side is not
+        printed without a Monte Carlo verdict (``accuracy.statement(with_verdict=True)`` prints it).
+    accuracy : MeasuredRange
+        The numbers behind it (:func:`~pounding.closed_form.regimes.measured_range`).
     """
 
     case: Case
@@ -137,6 +140,7 @@ class Estimate:
     force_max_distribution: ForceDistribution = field(repr=False)
     accuracy_regime: str
     measured_accuracy: str
+    accuracy: MeasuredRange | None = field(default=None, repr=False)
 
     def gap_curve(self, gaps) -> GapCurve:
         """This estimate at other gaps [m], reusing its response statistics."""
@@ -169,6 +173,7 @@ class Estimate:
             "warnings": list(self.warnings),
             "accuracy_regime": self.accuracy_regime,
             "measured_accuracy": self.measured_accuracy,
+            "measured_accuracy_range": None if self.accuracy is None else self.accuracy.to_dict(),
             "gap": self.case.contact.gap,
             "duration": self.case.excitation.duration,
             "paper": {
@@ -265,6 +270,7 @@ def estimate(
         force_max_distribution=distribution,
         accuracy_regime=assessment.regime,
         measured_accuracy=assessment.measured_accuracy,
+        accuracy=assessment.accuracy,
     )
 
 

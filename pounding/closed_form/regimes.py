@@ -97,6 +97,13 @@ def accuracy_regime(gap: float, sigma_x: float, residual_share: float, bandwidth
     return "frequent"
 
 
+SIGNABLE_ERROR = 0.30
+"""The widest error [-] a measured range may span, either side, to be printed as an estimate's accuracy without a Monte
+Carlo verdict beside it (issue 32): a wider range sizes no gap or connection. Beyond it the estimate says how often it
+was within 10 % and that the case needs its Monte Carlo check; with the check (``estimate --check``, the report, the
+dashboard) the range is printed in full."""
+
+
 @lru_cache(maxsize=1)
 def accuracy_data() -> dict:
     """The measured accuracy (``pounding/data/accuracy.json``), read once."""
@@ -115,11 +122,14 @@ class Assessment:
         How far from Monte Carlo the recommended force was measured on cases like this one (one sentence).
     warnings : tuple of str
         What is wrong, how large the error can be, what to do (each at most 200 characters).
+    accuracy : MeasuredRange
+        The numbers behind ``measured_accuracy``.
     """
 
     regime: str
     measured_accuracy: str
     warnings: tuple[str, ...]
+    accuracy: MeasuredRange
 
 
 def _force_entry(spectrum: str, regime: str, yielding: bool) -> dict:
@@ -146,6 +156,8 @@ class MeasuredRange:
         Cases measured there, and how many of them within 10 %.
     where : str
         Where that is, in words ("where pounding is frequent").
+    median_abs_error : float
+        The median of |error| there [-].
     """
 
     regime: str
@@ -154,6 +166,7 @@ class MeasuredRange:
     cases: int
     within_10_percent: int
     where: str = ""
+    median_abs_error: float = 0.0
 
     def band(self, force):
         """Where the Monte Carlo mean lay for a closed-form E[F_max] ``force`` [N] (a number or an array), given
@@ -167,10 +180,21 @@ class MeasuredRange:
         """JSON-ready: the regime and the range of closed form / Monte Carlo - 1 [-]."""
         return {"regime": self.regime, "low": self.low, "high": self.high}
 
-    def statement(self) -> str:
-        """The estimate's one sentence (``Estimate.measured_accuracy``)."""
-        return (f"Measured {_span(self)} off Monte Carlo {self.where} (within 10 % on {self.within_10_percent} "
-                f"of {self.cases} cases).")
+    @property
+    def signable(self) -> bool:
+        """Whether the range lies within :data:`SIGNABLE_ERROR` either side."""
+        return -SIGNABLE_ERROR <= self.low and self.high <= SIGNABLE_ERROR
+
+    def statement(self, with_verdict: bool = False) -> str:
+        """The estimate's one sentence (``Estimate.measured_accuracy``): the range where it is :attr:`signable` or a
+        Monte Carlo verdict stands beside it (``with_verdict``); otherwise how often it was within 10 % and that
+        this case needs its check."""
+        if with_verdict or self.signable:
+            return (f"Measured {_span(self)} off Monte Carlo {self.where} (within 10 % on {self.within_10_percent} "
+                    f"of {self.cases} cases).")
+        return (f"Within 10 % of Monte Carlo on {self.within_10_percent} of {self.cases} cases {self.where} (median "
+                f"{100 * self.median_abs_error:.0f} %), more than {100 * SIGNABLE_ERROR:.0f} % off on some: check this "
+                "case against Monte Carlo.")
 
 
 def _spectrum(pair) -> str:
@@ -192,7 +216,7 @@ def measured_range(pair, gap: float | None = None, sigma_x: float | None = None)
     entry = _force_entry(spectrum, regime, pair.yielding)
     where = _WHERE[regime] + (" under a Clough-Penzien spectrum" if spectrum == "clough-penzien" else "")
     return MeasuredRange(regime, float(entry["low"]), float(entry["high"]), int(entry["cases"]),
-                         int(entry["within_10_percent"]), where)
+                         int(entry["within_10_percent"]), where, float(entry["median_abs_error"]))
 
 
 def accuracy_band(force, ranges) -> tuple[np.ndarray, np.ndarray]:
@@ -231,20 +255,20 @@ def assess(pair, gap: float, sigma_x: float, required_gap: float, target_probabi
                         f"drift; up to {100 * drift['max']:.0f} % of records pounded at the gap for 95 %. {_CHECK}")
     if share > RESIDUAL_SHARE_LIMIT:
         warnings.append(f"Storeys near elastic-perfectly plastic (the residual adds {100 * share:.0f} % to sigma): the "
-                        f"force may be off by {_span(_force_entry(spectrum, 'large residual', yielding))}. {_CHECK}")
+                        f"force may be off by {_bounded_span(_force_entry(spectrum, 'large residual', yielding))}. {_CHECK}")
     if bandwidth < NARROW_BAND_LIMIT:
         warnings.append(f"The relative motion is narrow-band (q = {bandwidth:.2f}): the force may be off by "
-                        f"{_span(_force_entry(spectrum, 'narrow band', yielding))}. {_CHECK}")
+                        f"{_bounded_span(_force_entry(spectrum, 'narrow band', yielding))}. {_CHECK}")
     if MODERATE_GAP * sigma_x < gap <= sigma_x:
         warnings.append("The gap lies between sigma_X / 2 and sigma_X: the force may be off by "
-                        f"{_span(_force_entry(spectrum, 'moderate gap', yielding))}. {_CHECK}")
+                        f"{_bounded_span(_force_entry(spectrum, 'moderate gap', yielding))}. {_CHECK}")
     if gap > sigma_x:
-        warnings.append(f"Pounding is rare at this gap (above sigma_X): the force may be off by {_span(measured)}. {_CHECK}")
+        warnings.append(f"Pounding is rare at this gap (above sigma_X): the force may be off by {_bounded_span(measured)}. {_CHECK}")
     if required_gap > sigma_x:  # where pairs like this one were measured to pound more often than 1 - 0.95
         warning = _required_gap_warning(pair, spectrum, yielding, target_probability)
         if warning:
             warnings.append(warning)
-    return Assessment(regime, measured.statement(), tuple(warnings))
+    return Assessment(regime, measured.statement(), tuple(warnings), measured)
 
 
 def _required_gap_warning(pair, spectrum: str, yielding: bool, target_probability: float) -> str:
@@ -269,6 +293,13 @@ def _span(entry: dict | MeasuredRange) -> str:
     return f"{100 * low:+,.0f} % to {100 * high:+,.0f} %"
 
 
+def _bounded_span(entry: dict | MeasuredRange) -> str:
+    """:func:`_span` where the range lies within :data:`SIGNABLE_ERROR` either side, else "more than 30 %": a warning
+    prints no wider range (the Monte Carlo check gives this case's own error)."""
+    low, high = (entry["low"], entry["high"]) if isinstance(entry, dict) else (entry.low, entry.high)
+    return _span(entry) if -SIGNABLE_ERROR <= low and high <= SIGNABLE_ERROR else f"more than {100 * SIGNABLE_ERROR:.0f} %"
+
+
 def extreme_warnings(pair, force: float, paper_force: float | None, velocity: float, sigma_x: float) -> tuple[str, ...]:
     """The warnings of an estimate on a :class:`~pounding.closed_form.pair.LinearizedPair` whose inputs lie beyond what it
     was measured on: records cut below the motion's own frequencies, a contact too soft for short impacts, a
@@ -278,7 +309,7 @@ def extreme_warnings(pair, force: float, paper_force: float | None, velocity: fl
     share = float(pair.cutoff_shares[5])  # of the linearized sigma_V^2, which loses more than sigma_X^2 (w^2 G_X)
     measured = accuracy_data()["extreme_inputs"]
     if share > CUTOFF_SHARE_LIMIT:
-        above, below = _span(measured["cutoff_above_frequencies"]), _span(measured["cutoff_below_frequencies"])
+        above, below = _bounded_span(measured["cutoff_above_frequencies"]), _bounded_span(measured["cutoff_below_frequencies"])
         warnings.append(f"The records stop at {case.excitation.cutoff_frequency:.3g} rad/s, removing {100 * share:.0f} % of "
                         f"sigma_V^2. Cut there too, it was {above} off, {below} far below the buildings' frequencies. {_CHECK}")
     contact = case.contact
@@ -287,7 +318,7 @@ def extreme_warnings(pair, force: float, paper_force: float | None, velocity: fl
         penetration = (impact / contact.stiffness) ** (1.0 / contact.stiffness_exponent) / sigma_x
         if penetration > SOFT_CONTACT_LIMIT:
             warnings.append(f"The contact is soft: the largest impact would penetrate {penetration:.2g} sigma_X, no short "
-                            f"shock as assumed; measured {_span(measured['soft_contact'])} off beyond 1, more if softer. {_CHECK}")
+                            f"shock as assumed; measured {_bounded_span(measured['soft_contact'])} off beyond 1, more if softer. {_CHECK}")
     weight = min(case.contact_masses) * STANDARD_GRAVITY
     largest = max(force, paper_force or 0.0)
     if largest > FORCE_WEIGHT_LIMIT * weight:
@@ -310,6 +341,6 @@ def hazard_warnings(case) -> tuple[str, ...]:
         warnings.append(motions.fit_quality(fundamental_periods(case)).warning())
     warnings.append(motions.fitted.bound_warning())
     measured = accuracy_data()["extreme_inputs"]["recorded_suite_gap"]
-    warnings.append(f"The closed-form gap for recorded motions was measured {_span(measured)} off the records' own. "
+    warnings.append(f"The closed-form gap for recorded motions was measured {_bounded_span(measured)} off the records' own. "
                     "Use `pounding simulate --design-gap 0.95`.")
     return tuple(warning for warning in warnings if warning)

@@ -95,7 +95,8 @@ def result_html(
         f"{_design_gap_html(snapshot, d, design_gap, design_gap_note)}"
         f'<p class="monte-carlo">Monte Carlo mean F<sub>max</sub>: {mc}</p>'
     )
-    summary += f'<p class="measured-accuracy">Recommended F<sub>e</sub>: {html.escape(e.measured_accuracy)}</p>'
+    measured = e.measured_accuracy if (check or snapshot.check) is None else e.accuracy.statement(with_verdict=True)
+    summary += f'<p class="measured-accuracy">Recommended F<sub>e</sub>: {html.escape(measured)}</p>'
     if e.warnings:
         summary += "".join(f'<p class="estimate-warning">&#9888; {html.escape(w)}</p>' for w in e.warnings)
     return (
