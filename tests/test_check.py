@@ -139,6 +139,33 @@ def test_bad_arguments_are_refused_by_name():
         check_estimate(estimate("section5-T2-0.4"), 5, seed=-1)
 
 
+def test_the_fractiles_come_from_the_records_where_the_closed_form_is_off_or_narrower(checked):
+    """The fractiles the tool stands behind: the closed form's where it agrees (Section 5, frequent), the records'
+    where it does not (the elastic pair at 1.5 sigma_X), each equal to its source's own numbers."""
+    result, check = checked["frequent"]
+    assert check.quantiles_source == "closed form"
+    for key, value in check.quantiles_answer.items():
+        assert value == pytest.approx(result.force_max_distribution.quantile(float(key)), rel=1e-12)
+    assert check.fractile_sentence(str) == ""
+    result, check = checked["elastic rare, off"]
+    assert check.quantiles_source == "monte carlo" and check.quantiles_answer == check.force_max_quantiles
+    assert check.fractile_sentence(lambda n: f"{n / 1e3:.1f} kN").startswith("Fractiles of F_max from the records")
+
+
+def test_a_wider_spread_of_the_records_takes_their_fractiles():
+    """Where the closed form agrees on the mean but the records spread wider (their 95 % fractile 1.3 times the closed
+    form's), the upper fractiles would be unsafe: the records' stand, and the sentence says why; where the closed
+    form's fractiles lie above the records' (the safe side), they stand."""
+    records = {"0.5": 300e3, "0.84": 450e3, "0.95": 650e3}
+    closed = {"0.5": 310e3, "0.84": 420e3, "0.95": 500e3}
+    check = EstimateCheck(400, 1, 320e3, (305e3, 335e3), records, 1.0, 0.24, True, 325e3, 0.24, 0.99, 0.95, closed)
+    assert check.agrees and check.quantiles_source == "monte carlo" and check.quantiles_answer == records
+    assert "spread wider" in check.fractile_sentence(lambda n: f"{n / 1e3:.0f} kN")
+    above = EstimateCheck(400, 1, 320e3, (305e3, 335e3), records, 1.0, 0.24, True, 325e3, 0.24, 0.99, 0.95,
+                          {"0.5": 310e3, "0.84": 470e3, "0.95": 700e3})
+    assert above.quantiles_source == "closed form"
+
+
 def _unitless(text: str) -> list[str]:
     """The numbers of ``text`` with no unit after them, the study's "(N records, seed S)" aside."""
     text = re.sub(r"\(\d+ records?, seed \d+\)", "", text)

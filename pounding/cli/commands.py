@@ -221,8 +221,9 @@ def _estimate(args) -> int:
     for warning in result.warnings:
         print(f"warning: {warning}")
     if check is not None:
-        for line in check.sentences(force_text, lambda metres: f"{100 * metres:.2f} cm"):
-            print(line)
+        for line in (*check.sentences(force_text, lambda metres: f"{100 * metres:.2f} cm"), check.fractile_sentence(force_text)):
+            if line:
+                print(line)
     return 0
 
 

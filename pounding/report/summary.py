@@ -80,7 +80,9 @@ def verdict_html(snapshot: Snapshot, units: str = "SI") -> str:
             f'<b><span class="gap-answer">{html.escape(d.length(check.gap_answer))}</span></b> for '
             f"{100 * check.target_probability:g} % probability of no pounding "
             f'(<span class="gap-source">{html.escape(gap_from)}</span>).</p>'
-            f'<p class="check-force">{html.escape(force_sentence)}</p><p class="check-gap">{html.escape(gap_sentence)}</p></div>')
+            f'<p class="check-force">{html.escape(force_sentence)}</p><p class="check-gap">{html.escape(gap_sentence)}</p>'
+            + (f'<p class="check-fractiles">{html.escape(fractiles)}</p>' if (fractiles := check.fractile_sentence(d.force)) else "")
+            + "</div>")
 
 
 def summary_rows(snapshot: Snapshot, units: str = "SI") -> list[tuple[str, str, str]]:

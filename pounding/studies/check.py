@@ -82,6 +82,8 @@ class EstimateCheck:
         The closed form's probability of pounding (G21) [-].
     target_probability : float
         Probability of no pounding both gaps are for [-].
+    closed_form_quantiles : dict
+        The closed form's fractiles of F_max (G31) [N], keyed as ``force_max_quantiles``.
     """
 
     records: int
@@ -96,6 +98,7 @@ class EstimateCheck:
     closed_form_gap: float
     closed_form_pounding_probability: float
     target_probability: float
+    closed_form_quantiles: dict = dataclasses.field(default_factory=dict)
 
     @property
     def force_answer(self) -> float:
@@ -116,6 +119,34 @@ class EstimateCheck:
     def gap_source(self) -> str:
         """Where :attr:`gap_answer` comes from: "closed form" or "monte carlo"."""
         return "monte carlo" if self.required_gap > self.closed_form_gap else "closed form"
+
+    @property
+    def quantiles_source(self) -> str:
+        """Where the fractiles of F_max the tool stands behind come from: the closed form's where its E[F_max] agrees
+        and none of its upper fractiles (84 %, 95 %) lies more than ``defaults.CHECK_TOLERANCE`` below the records';
+        otherwise the records' ("monte carlo"): a suite whose spread is wider than the closed form's distribution
+        has its upper fractiles under-estimated, on the unsafe side."""
+        if not self.agrees or not self.closed_form_quantiles:
+            return "monte carlo"
+        low = 1.0 - defaults.CHECK_TOLERANCE
+        upper = [key for key in self.force_max_quantiles if float(key) > 0.5]
+        short = any(self.closed_form_quantiles[key] < low * self.force_max_quantiles[key] for key in upper)
+        return "monte carlo" if short else "closed form"
+
+    @property
+    def quantiles_answer(self) -> dict:
+        """The fractiles of F_max the tool stands behind [N], keyed as ``force_max_quantiles``."""
+        source = self.force_max_quantiles if self.quantiles_source == "monte carlo" else self.closed_form_quantiles
+        return dict(source)
+
+    def fractile_sentence(self, force: Callable[[float], str]) -> str:
+        """Where the records' fractiles stand instead of the closed form's, one sentence saying so with them (units
+        by ``force``, as :meth:`sentences`); "" where the closed form's stand."""
+        if self.quantiles_source == "closed form" or not self.force_max_quantiles:
+            return ""
+        values = ", ".join(f"{100 * float(key):g} %: {force(value)}" for key, value in self.force_max_quantiles.items())
+        why = "" if not self.agrees else " (the closed form's upper fractiles are lower: the records spread wider)"
+        return f"Fractiles of F_max from the records{why}: {values}."
 
     @property
     def error(self) -> float:
@@ -142,7 +173,8 @@ class EstimateCheck:
         """JSON-ready, SI units (``estimate --json``'s top level): the force and the gap the tool stands behind, and
         where each comes from."""
         return {"force_answer": self.force_answer, "answer_source": self.answer_source,
-                "gap_answer": self.gap_answer, "gap_source": self.gap_source}
+                "gap_answer": self.gap_answer, "gap_source": self.gap_source,
+                "quantiles_answer": self.quantiles_answer, "quantiles_source": self.quantiles_source}
 
     def sentences(self, force: Callable[[float], str], length: Callable[[float], str]) -> tuple[str, str]:
         """The verdict in two sentences, the force's and the gap's, every number with its unit: ``force`` and
@@ -232,6 +264,8 @@ def check_estimate(estimate: Estimate, plan: MonteCarloPlan | int | None = None,
         closed_form_gap=estimate.required_gap,
         closed_form_pounding_probability=estimate.pounding_probability,
         target_probability=target,
+        closed_form_quantiles={key: float(estimate.force_max_distribution.quantile(float(key)))
+                               for key in defaults.FORCE_QUANTILES},
     )
 
 
