@@ -205,6 +205,28 @@ def test_no_range_wider_than_30_percent_is_printed_without_a_verdict():
     assert wide_seen  # the grid holds regimes measured wider than 30 %: the rule was exercised
 
 
+def test_storeys_with_another_loop_state_the_accuracy_measured_on_such_storeys():
+    """A yielding storey given the engineer's way (Wen's symmetric loop, beta_share 0.5) is not what the grid measured
+    (beta_share 1.5 and 2): its estimate states accuracy.json's "other loops" row (validation/storey_accuracy.py),
+    the paper's loop the grid's; elastic storeys have no loop and keep the grid's."""
+    from pounding.mechanics.structures import BoucWen
+
+    paper = load_case("section5-T2-0.4")
+    symmetric = dataclasses.replace(paper, buildings=tuple(
+        dataclasses.replace(b, storeys=tuple(dataclasses.replace(st, bouc_wen=BoucWen.from_yield_drift(0.01, 0.05, 1.0, 0.5))
+                                             for st in b.storeys)) for b in paper.buildings))
+    row = accuracy_data()["force"]["other loops"]["gap below sigma_X"]
+    result = estimate(symmetric)
+    assert result.accuracy_regime != "rare"
+    assert (result.accuracy.low, result.accuracy.high, result.accuracy.cases) == (row["low"], row["high"], row["cases"])
+    assert f"on {row['within_10_percent']} of {row['cases']} cases" in result.measured_accuracy
+    grid = estimate(paper).accuracy
+    frequent = accuracy_data()["force"]["kanai-tajimi"]["frequent"]
+    assert (grid.low, grid.high, grid.cases) == (frequent["low"], frequent["high"], frequent["cases"])
+    elastic = estimate(varied_case(paper, elastic=True)).accuracy
+    assert elastic.cases != row["cases"] or elastic.low != row["low"]
+
+
 def _stated_range(text):
     """The lower and upper error [-] of a measured-accuracy text, 'Measured a % to b %'."""
     low, high = re.search(r"Measured ([-+]\d+) % to ([-+]\d+) %", text).groups()

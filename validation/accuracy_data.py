@@ -44,6 +44,9 @@ from .record_synthesis import (
     design_gap_fraction,
 )
 from .sizes import first
+from .storey_accuracy import CASES as STOREY_CASES
+from .storey_accuracy import other_loop_errors
+from .storey_accuracy import rows as storey_rows
 
 ROOT = Path(__file__).resolve().parent.parent
 DEFAULT_OUTPUT = ROOT / "pounding" / "data" / "accuracy.json"
@@ -98,6 +101,15 @@ def clough_penzien_force(cases: int | None, records: int) -> dict:
     return {label: force_entry([e for (_, _, e), other in zip(rows, labels) if other == label]) for label in CLOUGH_PENZIEN_LABELS}
 
 
+def other_loops_force(cases: int | None, records: int, table: list[dict] | None = None) -> dict:
+    """:mod:`validation.storey_accuracy`'s draws whose loop lies outside the grid's (beta_share below
+    ``regimes.GRID_LOOP_SHARE``), under any of its spectra: the gap below sigma_X, or rare pounding (``table``: rows
+    already measured, else the first ``cases`` draws, all for None)."""
+    table = storey_rows(count=STOREY_CASES if cases is None else cases, records=records) if table is None else table
+    errors = other_loop_errors(table)
+    return {label: force_entry(errors[label]) for label in ("gap below sigma_X", "rare")}
+
+
 def required_gap(seeds, cases: int | None, gap_records: int, design_records: int) -> dict:
     """The fractions pounding at the closed-form gap for 95 %, by kind of pair."""
     rows = required_gaps(seeds, gap_records, TARGET, cases)
@@ -149,7 +161,12 @@ def accuracy_document(seeds=SEEDS, cases: int | None = None, records: int = RECO
         "force": {
             "kanai-tajimi": kanai_tajimi_force(seeds, cases, records),
             "clough-penzien": clough_penzien_force(cases, clough_penzien_records),
+            "other loops": other_loops_force(cases, records),
         },
+        "other_loops": {"about": (f"force['other loops']: yielding storeys with beta_share below 1.5 (Wen's symmetric 0.5 "
+                                  f"and 1) from validation/storey_accuracy.py's draws ({'all' if cases is None else cases} "
+                                  f"of seed 3201, {records} records a case, seed {SEED}) at commit {commit}, under "
+                                  "Kanai-Tajimi, Clough-Penzien and design-spectrum banks")},
         "required_gap": required_gap(seeds, cases, gap_records, design_records),
         "extreme_inputs": json.loads(DEFAULT_OUTPUT.read_text())["extreme_inputs"],  # measured by hand, kept
     }

@@ -31,6 +31,7 @@ import numpy as np
 from pounding import estimate, load_case, simulate
 from pounding.case.case import case_from_dict
 from pounding.closed_form.pair import LinearizedPair
+from pounding.closed_form.regimes import GRID_LOOP_SHARE
 from pounding.errors import ConvergenceError, InputError
 from pounding.hazard.excitation import CloughPenzien
 from pounding.mechanics.structures import BoucWen
@@ -113,6 +114,16 @@ def rows(seed: int = SEED, count: int = CASES, records: int = RECORDS) -> list[d
               + ("err   n/a" if out[-1]["error"] is None else f"err {out[-1]['error']:+7.1%}")
               + ("" if yielding is None else f"  peak/yield {yielding:5.2f}"), flush=True)
     return out
+
+
+def other_loop_errors(table: list[dict]) -> dict:
+    """The errors of the yielding draws whose loop lies outside the grid's (beta_share below
+    ``regimes.GRID_LOOP_SHARE``): {"gap below sigma_X": [...], "rare": [...]} (accuracy.json's "other loops")."""
+    errors: dict = {"gap below sigma_X": [], "rare": []}
+    for row in table:
+        if row["error"] is not None and row["share"] is not None and row["share"] < GRID_LOOP_SHARE:
+            errors["rare" if row["regime"] == "rare" else "gap below sigma_X"].append(row["error"])
+    return errors
 
 
 def _kind(row) -> str:

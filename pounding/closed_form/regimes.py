@@ -104,6 +104,23 @@ was within 10 % and that the case needs its Monte Carlo check; with the check (`
 dashboard) the range is printed in full."""
 
 
+GRID_LOOP_SHARE = 1.5
+"""The smallest loop shape beta_share = beta / (beta + gamma) [-] of the accuracy grid's yielding storeys (Section 6's
+beta = -3 gamma; Section 5's is 2). A yielding storey below it (Wen's symmetric 0.5, the default of a storey given by
+its yield drift, or 1) takes its measured accuracy from the storey draws (accuracy.json's "other loops",
+validation/storey_accuracy.py), not from the grid."""
+
+
+def other_loop(case) -> bool:
+    """Whether a yielding storey of ``case`` has a loop outside the grid's (beta_share below :data:`GRID_LOOP_SHARE`)."""
+    for building in case.buildings:
+        for storey in building.storeys:
+            law = storey.bouc_wen
+            if law.alpha < 1.0 and law.beta + law.gamma > 0 and law.beta / (law.beta + law.gamma) < GRID_LOOP_SHARE:
+                return True
+    return False
+
+
 @lru_cache(maxsize=1)
 def accuracy_data() -> dict:
     """The measured accuracy (``pounding/data/accuracy.json``), read once."""
@@ -133,6 +150,8 @@ class Assessment:
 
 
 def _force_entry(spectrum: str, regime: str, yielding: bool) -> dict:
+    if spectrum == "other loops":
+        return accuracy_data()["force"][spectrum]["rare" if regime == "rare" else "gap below sigma_X"]
     table = accuracy_data()["force"][spectrum]
     if regime == "rare":
         return table["rare, yielding" if yielding else "rare, elastic"]
@@ -198,8 +217,14 @@ class MeasuredRange:
 
 
 def _spectrum(pair) -> str:
-    """The row of accuracy.json's ``force`` table a pair reads."""
+    """The spectrum's kind as accuracy.json names it: "clough-penzien" or "kanai-tajimi"."""
     return "clough-penzien" if isinstance(pair.case.excitation.spectrum, CloughPenzien) else "kanai-tajimi"
+
+
+def _force_table(pair) -> str:
+    """The row of accuracy.json's ``force`` table a pair reads: "other loops" for a yielding storey outside the grid's
+    loops (:func:`other_loop`), else its spectrum's."""
+    return "other loops" if pair.yielding and other_loop(pair.case) else _spectrum(pair)
 
 
 def measured_range(pair, gap: float | None = None, sigma_x: float | None = None) -> MeasuredRange:
@@ -211,10 +236,13 @@ def measured_range(pair, gap: float | None = None, sigma_x: float | None = None)
         return MeasuredRange("moving alike", 0.0, 0.0, 0, 0, "where the buildings move alike (no pounding, exactly)")
     gap = pair.case.contact.gap if gap is None else float(gap)
     sigma_x = pair.response_with_residual.sigma_relative_displacement if sigma_x is None else sigma_x
-    spectrum = _spectrum(pair)
+    spectrum = _force_table(pair)
     regime = accuracy_regime(gap, sigma_x, pair.residual_share, pair.bandwidth)
     entry = _force_entry(spectrum, regime, pair.yielding)
-    where = _WHERE[regime] + (" under a Clough-Penzien spectrum" if spectrum == "clough-penzien" else "")
+    if spectrum == "other loops":  # measured on the storey draws: rare pounding or not, under any spectrum
+        where = (_WHERE["rare"] if regime == "rare" else "where the gap is below sigma_X") + ", on storey loops like these"
+    else:
+        where = _WHERE[regime] + (" under a Clough-Penzien spectrum" if spectrum == "clough-penzien" else "")
     return MeasuredRange(regime, float(entry["low"]), float(entry["high"]), int(entry["cases"]),
                          int(entry["within_10_percent"]), where, float(entry["median_abs_error"]))
 
@@ -253,15 +281,16 @@ def assess(pair, gap: float, sigma_x: float, required_gap: float, target_probabi
         drift = accuracy_data()["required_gap"]["clough-penzien, yielding"]
         warnings.append("A building yields and the spectrum has no low frequencies: the estimate misses its plastic "
                         f"drift; up to {100 * drift['max']:.0f} % of records pounded at the gap for 95 %. {_CHECK}")
+    table = _force_table(pair)
     if share > RESIDUAL_SHARE_LIMIT:
         warnings.append(f"Storeys near elastic-perfectly plastic (the residual adds {100 * share:.0f} % to sigma): the "
-                        f"force may be off by {_bounded_span(_force_entry(spectrum, 'large residual', yielding))}. {_CHECK}")
+                        f"force may be off by {_bounded_span(_force_entry(table, 'large residual', yielding))}. {_CHECK}")
     if bandwidth < NARROW_BAND_LIMIT:
         warnings.append(f"The relative motion is narrow-band (q = {bandwidth:.2f}): the force may be off by "
-                        f"{_bounded_span(_force_entry(spectrum, 'narrow band', yielding))}. {_CHECK}")
+                        f"{_bounded_span(_force_entry(table, 'narrow band', yielding))}. {_CHECK}")
     if MODERATE_GAP * sigma_x < gap <= sigma_x:
         warnings.append("The gap lies between sigma_X / 2 and sigma_X: the force may be off by "
-                        f"{_bounded_span(_force_entry(spectrum, 'moderate gap', yielding))}. {_CHECK}")
+                        f"{_bounded_span(_force_entry(table, 'moderate gap', yielding))}. {_CHECK}")
     if gap > sigma_x:
         warnings.append(f"Pounding is rare at this gap (above sigma_X): the force may be off by {_bounded_span(measured)}. {_CHECK}")
     if required_gap > sigma_x:  # where pairs like this one were measured to pound more often than 1 - 0.95
