@@ -118,3 +118,13 @@ def test_filter_bank_rejects_bad_components():
         with pytest.raises(CaseError) as caught:
             FilterBank(**kwargs)
         assert caught.value.field == field
+
+
+@pytest.mark.parametrize("drift, n", [(0.01, 160.0), (0.001, 110.0)])
+def test_a_yield_drift_to_a_power_beyond_the_numbers_is_refused_naming_it(drift, n):
+    """Issue 33: yield_drift^-n past the largest float (1e-2 m to the 160th: 1e320) is refused as a CaseError naming
+    the yield drift, not an OverflowError traceback; the same n on a yield drift it can take is accepted."""
+    with pytest.raises(CaseError, match="yield_drift.*leaves the range of numbers"):
+        BoucWen.from_yield_drift(drift, 0.05, n, 0.5)
+    law = BoucWen.from_yield_drift(0.5, 0.05, n, 0.5)
+    assert law.yield_displacement == pytest.approx(0.5, rel=1e-12)

@@ -94,7 +94,10 @@ class BoucWen:
         n = finite_number("n", n)
         if not n >= 1:
             raise CaseError("n", f"must be >= 1, got {n:g}")
-        total = yield_drift ** -n
+        try:
+            total = yield_drift ** -n
+        except OverflowError:  # a float power beyond 1.8e308 raises rather than giving inf
+            total = math.inf
         if not (math.isfinite(total) and total > 0):
             raise CaseError("yield_drift", f"{yield_drift:g} m to the power {n:g} leaves the range of numbers")
         return cls(alpha=ratio, A=1.0, beta=share * total, gamma=(1.0 - share) * total, n=n)
