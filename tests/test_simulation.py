@@ -136,6 +136,20 @@ def test_summary_statistics():
     assert data["force_max"] == result.force_max.tolist()
 
 
+def test_the_interval_of_the_mean_force_never_goes_below_zero():
+    """Issue 33: with few pounding records among many that do not, mean - t s.e. falls below 0; a force is never
+    negative, so the interval is cut at 0 there and keeps its Student-t upper end."""
+    base = _shorter(load_case("section5-T2-0.4"), 10.0)
+    case = dataclasses.replace(base, contact=dataclasses.replace(base.contact, gap=0.15))
+    result = simulate(case, records=30, seed=3)
+    assert 0 < result.pounding_fraction < 0.3  # a few pound
+    half = 2.045 * result.force_max_std_error  # t(0.975, 29)
+    assert result.force_max_mean - half < 0  # the uncut interval would go below zero
+    low, high = result.force_max_confidence_interval
+    assert low == 0.0 and high == pytest.approx(result.force_max_mean + half, rel=1e-3)
+    assert result.to_dict()["force_max_ci95"][0] == 0.0
+
+
 def test_wider_gap_means_less_pounding():
     case = _shorter(load_case("section5-T2-0.4"), 10.0)
     fractions = []

@@ -70,11 +70,12 @@ class SimulationResult:
 
     @property
     def force_max_confidence_interval(self) -> tuple[float, float]:
-        """95 % confidence interval of the mean extreme force (Student t) [N]."""
+        """95 % confidence interval of the mean extreme force (Student t) [N], cut at 0 below: a force is never
+        negative, so neither is its mean (a few pounding records among many that do not widen it past 0)."""
         if self.n_records < 2:
-            return (-math.inf, math.inf)
+            return (0.0, math.inf)
         half = stdtrit(self.n_records - 1, 0.975) * self.force_max_std_error
-        return (self.force_max_mean - half, self.force_max_mean + half)
+        return (max(0.0, self.force_max_mean - half), self.force_max_mean + half)
 
     @property
     def pounding_fraction(self) -> float:
