@@ -27,6 +27,7 @@ __all__ = [
     "MAX_SAMPLES_PER_RECORD",
     "MAX_STOREYS",
     "MAX_SWEEP_POINTS",
+    "MAX_TIME_HISTORIES",
     "MAX_SYNTHESIS_SAMPLES",
     "DASHBOARD_MAX_STOREYS",
     "DASHBOARD_RECORDS",
@@ -130,6 +131,9 @@ MAX_SYNTHESIS_SAMPLES = 2**24
 """Length of a record's synthesis FFT (synthesis_factor times the power of two >= the samples): 16,777,216; one record at the limit is drawn in 3 s with 0.6 GB."""
 MAX_RECORDS = 1_000_000
 """Records of one Monte Carlo study: the Section 5 case at the limit runs about 25 min on 2 cores (1.5 ms a record) and holds 0.3 GB of results."""
+MAX_TIME_HISTORIES = 10_000_000
+"""Time histories one study may ask for, points times records (a sweep, fragility curve or force spectrum): at about
+2 ms each, a day on one core. Each factor has its own limit; their product 1e10 would run for months."""
 MAX_STOREYS = 20
 """Storeys per building: the closed form of a 20 + 20-storey case takes 14 s and 1.8 GB (10 + 10: 1.6 s, 0.3 GB; it grows steeply: 50 + 50 takes minutes)."""
 MAX_SWEEP_POINTS = 10_000

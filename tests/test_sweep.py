@@ -329,3 +329,20 @@ def test_pounding_sweep_command_when_wired(tmp_path):
     )
     assert done.returncode == 2
     assert done.stderr.count("\n") == 1 and "start:stop:count" in done.stderr
+
+
+def test_points_times_records_beyond_the_limit_are_refused_before_any_work(tmp_path):
+    """Issue 33: each factor within its own limit, their product past defaults.MAX_TIME_HISTORIES (1e7) is refused
+    naming records, and nothing is written; a run of the same points with fewer records would start."""
+    from pounding import defaults
+    from pounding.simulation.plan import MonteCarloPlan
+    from pounding.studies.fragility import fragility_curve
+
+    vary = {"contact.gap": [0.01 * (1 + i) for i in range(11)]}
+    records = defaults.MAX_TIME_HISTORIES // 11 + 1
+    assert records <= defaults.MAX_RECORDS
+    with pytest.raises(ArgumentError, match="records.*time histories"):
+        sweep(short_case(), vary, output_dir=tmp_path / "out", records=records, scheduler="serial")
+    assert not (tmp_path / "out" / "sweep.csv").exists()
+    with pytest.raises(ArgumentError, match="records.*time histories"):
+        fragility_curve("section5-T2-0.4", 4.0e5, [0.1 * (1 + i) for i in range(11)], MonteCarloPlan(records=records))

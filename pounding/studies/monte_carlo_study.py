@@ -11,8 +11,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pounding import defaults
 from pounding.case.case import as_case
-from pounding.errors import ArgumentError, quote
+from pounding.errors import ArgumentError, check_limit, quote
 from pounding.simulation.plan import MonteCarloPlan
 from pounding.simulation.result import quantile_interval, wilson_interval
 
@@ -72,6 +73,8 @@ def monte_carlo_forces_at(plan: MonteCarloPlan, case, adjustments: Sequence[Mapp
 
     if isinstance(case, Case):
         raise ArgumentError("case", "the Monte Carlo runs on the case file: give a preset name, a path or the parsed file")
+    check_limit("records", len(adjustments) * plan.records, defaults.MAX_TIME_HISTORIES, "time histories (points x records)",
+                "give fewer points or records", error=ArgumentError)
     loaded = as_case(case)
     if loaded.recorded and plan.records > len(loaded.hazard.records):
         raise ArgumentError("records", f"the case has {len(loaded.hazard.records)} recorded motions; give records at most that")

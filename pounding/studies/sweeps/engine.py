@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from pounding import defaults
-from pounding.errors import ArgumentError
+from pounding.errors import ArgumentError, check_limit
 from pounding.output import check_folder, check_target
 from pounding.studies.sweeps.chart import write_chart
 from pounding.studies.sweeps.points import Point, adjusted_points, case_data, sweep_points
@@ -351,6 +351,8 @@ def sweep(
     varied = normalized_vary(vary)
     paths = [path for path, _ in varied]
     points = sweep_points(data, name, varied, seed, tolerance)
+    check_limit("records", len(points) * records, defaults.MAX_TIME_HISTORIES, "time histories (points x records)",
+                "give fewer points or records", error=ArgumentError)
     check_folder(output_dir, FIELD)  # a bad folder, table or chart target is refused before any work
     store = Store(Path(output_dir))
     table_path = store.root / f"sweep.{table_format}"
