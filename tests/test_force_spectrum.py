@@ -86,6 +86,7 @@ def test_command_line_spectrum_json_and_chart(tmp_path, capsys):
     (["--period1", "0.5:0.2:4", "--period2", "0.4"], "--period1"),
     (["--period1", "0:1:4", "--period2", "0.4"], "--period1"),
     (["--period1", "1e-160:1e-150:2", "--period2", "0.4"], "--period1"),
+    (["--period1", "0.5:2000:3", "--period2", "0.4"], "--period1"),  # beyond the documented 1000 s: exit 2, not 1 later
     (["--period1", "0.5:1:4", "--period2", "-1"], "--period2"),
     (["--period1", "0.5:1:4", "--period2", "0.4", "--period-ratio", "0.5"], "--period-ratio"),
     (["--period1", "0.5:1:4"], "--period-ratio"),

@@ -76,9 +76,10 @@ tolerance = bounded_number(1e-12, 1e-2)
 """An argparse type: the integrator's relative tolerance, as ``Settings.tolerance`` allows."""
 
 
-def increasing_values(unit: str, minimum_count: int = 2):
+def increasing_values(unit: str, minimum_count: int = 2, maximum: float = math.inf):
     """An argparse type: ``start:stop:count`` (``count`` >= ``minimum_count`` values from ``start`` to ``stop``,
-    both ends included) or ``a,b,c``; every value a finite number > 0 in ``unit``, strictly increasing."""
+    both ends included) or ``a,b,c``; every value a finite number > 0 and at most ``maximum`` in ``unit``, strictly
+    increasing."""
 
     def number(text: str, whole: str) -> float:
         try:
@@ -87,6 +88,8 @@ def increasing_values(unit: str, minimum_count: int = 2):
             raise argparse.ArgumentTypeError(f"{_shown(text.strip())} in {_shown(whole)} is not a number") from None
         if not (math.isfinite(value) and value > 0):
             raise argparse.ArgumentTypeError(f"every value must be a finite number > 0 {unit}, got {_shown(text.strip())}")
+        if value > maximum:
+            raise argparse.ArgumentTypeError(f"every value must be at most {maximum:g} {unit}, got {_shown(text.strip())}")
         return value
 
     def parse(text: str) -> tuple[float, ...]:

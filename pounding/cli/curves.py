@@ -66,7 +66,7 @@ def add_spectrum(commands) -> None:
         "  pounding spectrum section5-T2-0.4 --period1 0.3:2:12 --period-ratio 0.5 --records 100 -o spectrum.html",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    parser.add_argument("--period1", type=increasing_values("s"), metavar="A:B:N", required=True,
+    parser.add_argument("--period1", type=increasing_values("s", maximum=1e3), metavar="A:B:N", required=True,
                         help="fundamental periods of building 1 [s]: start:stop:count or a,b,c, increasing")
     second = parser.add_mutually_exclusive_group(required=True)
     second.add_argument("--period-ratio", type=bounded_number(0.0, 1e3, open_low=True), metavar="R",

@@ -162,7 +162,7 @@ def records_command(args) -> int:
             out["records"] = [{"file": file, **_record_entry(case, index)} for index, file in enumerate(written)]
         print(json.dumps(out))
     else:
-        print(f"wrote {len(written)} records ({args.format}, acceleration in g) to {directory}")
+        print(f"wrote {len(written)} record{'s' if len(written) != 1 else ''} ({args.format}, acceleration in g) to {directory}")
         if size:
             print(f"scaled {case.hazard.scaling}")
             for index, file in enumerate(written):
