@@ -311,12 +311,20 @@ def _refused(run: SimpleNamespace, argument: str) -> None:
     assert len(lines) == 1 and argument in lines[0] and len(lines[0]) <= 200, run.stderr
 
 
-@pytest.mark.parametrize("output", ["/proc/pounding-export", "{file}/sub"])
-def test_an_unwritable_output_folder_is_refused(tmp_path, capsys, output):
-    # Root ignores permission bits: /proc takes no new folder whoever asks; a file cannot hold a folder.
+def test_a_file_where_the_output_folder_should_be_is_refused(tmp_path, capsys):
+    # A file cannot hold a folder: the argument is wrong, exit 2 naming it.
     (tmp_path / "file").write_text("")
-    run = _pounding(capsys, "export", "opensees", "section5-T2-0.4", "--records", "1", "-o", output.format(file=tmp_path / "file"), check=False)
+    run = _pounding(capsys, "export", "opensees", "section5-T2-0.4", "--records", "1", "-o", str(tmp_path / "file" / "sub"), check=False)
     _refused(run, "--output")
+
+
+def test_a_folder_the_system_will_not_make_exits_1_naming_it(capsys):
+    # Root ignores permission bits: /proc takes no new folder whoever asks. The system refusing a write is exit 1 with
+    # one line naming the path, as for every other command's output (issue 33: export exited 2 here).
+    run = _pounding(capsys, "export", "opensees", "section5-T2-0.4", "--records", "1", "-o", "/proc/pounding-export", check=False)
+    assert run.returncode == 1, run.stderr
+    lines = run.stderr.strip().splitlines()
+    assert len(lines) == 1 and "/proc/pounding-export" in lines[0] and len(lines[0]) <= 200, run.stderr
 
 
 def test_a_contact_law_opensees_lacks_is_refused(tmp_path, capsys):

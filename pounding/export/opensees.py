@@ -25,7 +25,7 @@ import numpy as np
 
 from pounding import __version__, defaults
 from pounding.case.case import Case
-from pounding.errors import ArgumentError, CaseError, quote
+from pounding.errors import CaseError, quote
 from pounding.export.opensees_script import CONTACT_MATERIALS
 from pounding.mechanics.contact import Contact, hertz_peak_penetration
 from pounding.output import check_folder, write_atomic
@@ -34,9 +34,9 @@ from pounding.simulation.system import check_records
 
 __all__ = [
     "HERTZ_DURATION_FACTOR",
-    "OpenSeesExport",
     "PERIOD_STEPS",
     "STEPS_PER_IMPACT",
+    "OpenSeesExport",
     "analysis_time_step",
     "check_exportable",
     "export_opensees",
@@ -114,14 +114,16 @@ class OpenSeesExport:
 
 
 def _writable_folder(directory, field: str) -> Path:
-    """``directory`` made if missing and proven writable (a file made and removed), else :class:`ArgumentError` naming ``field``."""
+    """``directory`` made if missing and proven writable (a file made and removed): :class:`ArgumentError` naming
+    ``field`` where it is no folder, :class:`OSError` naming it where the system refuses (as every command's
+    output: exit 1, not 2)."""
+    folder = check_folder(directory, field, create=True)
     try:
-        folder = check_folder(directory, field, create=True)
         descriptor, name = tempfile.mkstemp(prefix=".pounding-export.", dir=folder)
         os.close(descriptor)
         os.unlink(name)
     except OSError as error:
-        raise ArgumentError(field, f"{quote(os.fspath(directory), 80)} cannot be written: {error.strerror or error}") from None
+        raise OSError(error.errno, f"cannot write in it: {error.strerror or error}", os.fspath(directory)) from None
     return folder
 
 
@@ -145,7 +147,9 @@ def export_opensees(case: Case, directory, records: int, seed: int = defaults.SE
     CaseError
         A contact law OpenSees has no material for (naming ``contact.model``).
     ArgumentError
-        A bad record count, or a folder that cannot be written (naming ``field``).
+        A bad record count, or a file where the folder should be (naming ``field``).
+    OSError
+        The system refused to make or write the folder, naming it.
     """
     from pounding.simulation.monte_carlo import simulate  # the impacts' speeds choose the step: a few ms a record
 
