@@ -239,3 +239,20 @@ def test_single_impact_solver_converges_to_an_independent_one(model, restitution
     bracket = (samples[max(best - 1, 0)], samples[min(best + 1, samples.size - 1)])
     refined = minimize_scalar(lambda t: -force(solution.sol(t)), bounds=bracket, method="bounded", options={"xatol": 1e-12})
     assert peaks[2] == pytest.approx(max(-refined.fun, max(forces)), rel=1e-7)
+
+
+def test_a_restitution_below_the_smallest_is_refused_and_at_it_both_methods_agree():
+    """Issue 33: restitution 1e-300 gave 0.00 kN in closed form while the time histories failed; below
+    MIN_RESTITUTION it is refused naming the key and the range. At the bound both methods still agree (the reason
+    for the bound): Section 5, Jankowski's law, closed form within 15 % of 40 records."""
+    import dataclasses
+
+    from pounding import CaseError, estimate, load_case, simulate
+    from pounding.mechanics.contact import MIN_RESTITUTION
+
+    with pytest.raises(CaseError, match=r"restitution.*\[0\.001, 1\]"):
+        Contact(gap=1e-3, stiffness=2.0e9, restitution=1e-300)
+    case = load_case("section5-T2-0.4")
+    case = dataclasses.replace(case, contact=dataclasses.replace(case.contact, restitution=MIN_RESTITUTION))
+    closed, study = estimate(case).force_expected, simulate(case, records=40, seed=2).force_max_mean
+    assert closed == pytest.approx(study, rel=0.15)

@@ -41,6 +41,7 @@ from pounding.mechanics.integrator import contact_force, single_impact_peak
 __all__ = [
     "CONTACT_LAWS",
     "CONTACT_MODELS",
+    "MIN_RESTITUTION",
     "Contact",
     "ContactLaw",
     "contact_force",
@@ -124,6 +125,12 @@ CONTACT_LAWS = {
 """The impact laws by name."""
 CONTACT_MODELS = tuple(CONTACT_LAWS)
 """Names of the impact laws."""
+MIN_RESTITUTION = 1e-3
+"""The smallest coefficient of restitution a contact takes [-]. Down to it the closed form and the time histories
+agree (Section 5 under Jankowski's law: 69.6 against 73.4 MN at 1e-3, 10.97 against 10.82 MN at 0.01, for 0.32 MN at
+0.65); below it the impact damping is critical to within 1e-3, the peak forces grow without bound (17 GN at 1e-6), the
+time histories stop resolving the impacts (1e-9: the step falls below 1e-12 s) and the closed form underflows to 0
+(1e-300). Measured concrete and steel impacts lie at 0.4 to 0.9."""
 
 
 def contact_law(name: str, field: str = "model") -> ContactLaw:
@@ -171,8 +178,8 @@ class Contact:
             raise CaseError("gap", f"must be >= 0 m, got {self.gap:g}")
         if self.stiffness <= 0:
             raise CaseError("stiffness", f"must be > 0, got {self.stiffness:g}")
-        if not 0.0 < self.restitution <= 1.0:
-            raise CaseError("restitution", f"must lie in (0, 1], got {self.restitution:g}")
+        if not MIN_RESTITUTION <= self.restitution <= 1.0:
+            raise CaseError("restitution", f"must lie in [{MIN_RESTITUTION:g}, 1], got {self.restitution:g}")
         levels = self.levels
         wrong = CaseError("levels", f"must be two floor numbers >= 1 (building 1, building 2), got {quote(levels)}")
         if isinstance(levels, (str, bytes, dict)) or not hasattr(levels, "__len__") or len(levels) != 2:
