@@ -101,8 +101,8 @@ def test_write_csv_header(tmp_path):
 AT2_ERRORS = [
     ("NPTS= 3, DT= 0.01 SEC\n 0.1 0.2\n", "a.AT2", "2 values"),
     ("NPTS= 3, DT= 0.01 SEC\n 0.1 0.2 0.3 0.4\n", "a.AT2", "NPTS = 3"),
-    ("NPTS= 3, DT= 0 SEC\n 0.1 0.2 0.3\n", "a.AT2:4", "> 0"),
-    ("NPTS= 3, DT= -0.01 SEC\n 0.1 0.2 0.3\n", "a.AT2:4", "> 0"),
+    ("NPTS= 3, DT= 0 SEC\n 0.1 0.2 0.3\n", "a.AT2:4", "must lie in [1e-05, 1] s"),
+    ("NPTS= 3, DT= -0.01 SEC\n 0.1 0.2 0.3\n", "a.AT2:4", "must lie in [1e-05, 1] s"),
     ("NPTS= 1, DT= 0.01 SEC\n 0.1\n", "a.AT2:4", "at least 2"),
     ("3 points at 0.01 s\n 0.1 0.2 0.3\n", "a.AT2:4", "NGA-West2"),
     ("NPTS= 3, DT= 0.01 SEC\n 0.1\n 0.2 nan\n", "a.AT2:6", "not finite"),

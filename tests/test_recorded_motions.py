@@ -170,6 +170,17 @@ def test_a_bad_record_file_exits_2_naming_file_and_line(tmp_path, capsys):
     assert len(err.splitlines()) == 1 and "bad.AT2:5" in err
 
 
+@pytest.mark.parametrize("step", ["1e-300", "5.0"])
+def test_a_time_step_no_record_has_is_refused_naming_the_file_and_line(tmp_path, capsys, step):
+    """Issue 33: DT = 1e-300 was blamed on cutoff_frequency; a step outside [1e-5, 1] s is refused naming the DT line."""
+    (tmp_path / "odd.AT2").write_text(f"PEER\nEVENT\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS=    4, DT= {step} SEC\n"
+                                      "0.1 0.2 0.3 0.4\n")
+    (tmp_path / "case.toml").write_text(_with_excitation('[excitation]\nrecords = ["odd.AT2"]\n'))
+    assert main(["estimate", str(tmp_path / "case.toml")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "odd.AT2:4" in err and "time step DT must lie in [1e-05, 1] s" in err
+
+
 def test_the_report_shows_the_periodogram_and_the_fitted_spectrum(suite, tmp_path):
     from pounding.report import write_report
 

@@ -34,6 +34,7 @@ from pounding.units import STANDARD_GRAVITY
 
 __all__ = [
     "SUFFIXES",
+    "TIME_STEP_RANGE",
     "Accelerogram",
     "G",
     "expand_records",
@@ -53,6 +54,10 @@ _NGA_WEST2 = re.compile(rf"^\s*NPTS\s*=\s*(\d+)\s*[,;]?\s*DT\s*=\s*({_NUMBER})\s
 _OLD_LAYOUT = re.compile(rf"^\s*(\d+)\s*[,;]?\s+({_NUMBER})\s*[,;]?\s*NPTS\s*[,;]?\s*DT", re.IGNORECASE)
 _GLUED = re.compile(_NUMBER)
 _SEPARATORS = re.compile(r"[,;\s]+")
+TIME_STEP_RANGE = (1e-5, 1.0)
+"""The time steps [s] a record may have: recorded motions are sampled at 0.001 to 0.02 s, old ones at 0.1 s; a step of
+1 s keeps nothing of a building's response, and 1e-300 s (a typo) once reached the closed form as a cutoff frequency
+of 1e300 rad/s before it was refused, naming the wrong key."""
 _LAYOUTS = "'NPTS= 3930, DT= .00500 SEC' (NGA-West2) or '3930  0.00500  NPTS, DT' (NGA)"
 
 
@@ -83,8 +88,9 @@ class Accelerogram:
         if not isinstance(self.name, str):
             raise CaseError("name", f"must be a string, got {described(self.name)}")
         step = finite_number(self.name or "time_step", self.time_step)
-        if not step > 0:
-            raise CaseError(self.name or "time_step", f"time step must be > 0 s, got {quote(step)}")
+        low, high = TIME_STEP_RANGE
+        if not low <= step <= high:
+            raise CaseError(self.name or "time_step", f"time step must lie in [{low:g}, {high:g}] s, got {quote(step)}")
         try:
             values = np.array(self.acceleration, dtype=np.float64)
         except (TypeError, ValueError):
@@ -174,8 +180,9 @@ def _line_values(line: str, where: str) -> list[float]:
 
 
 def _step(name: str, line_no: int, value: float) -> float:
-    if not (math.isfinite(value) and value > 0):
-        raise CaseError(f"{name}:{line_no}", f"time step DT must be > 0 s, got {quote(value)}")
+    low, high = TIME_STEP_RANGE
+    if not (math.isfinite(value) and low <= value <= high):
+        raise CaseError(f"{name}:{line_no}", f"time step DT must lie in [{low:g}, {high:g}] s, got {quote(value)}")
     return value
 
 
