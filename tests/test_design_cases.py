@@ -86,6 +86,17 @@ def test_bad_asce_and_table_keys(excitation, field):
     assert caught.value.field.startswith(field)
 
 
+@pytest.mark.parametrize("value", [-0.2, 0.0, "0.5"])
+def test_a_tabulated_acceleration_is_named_as_written_in_g(value):
+    """Issue 33: a bad second acceleration was named "accelerations.2.value" and checked as "> 0 m/s^2" though written
+    in g: it is named accelerations.2 and its range is said in g."""
+    excitation = {"spectrum": "design", "code": "table", "periods": [0.1, 1.0], "accelerations": [0.5, value], "duration": 15.0}
+    with pytest.raises(CaseError) as caught:
+        case_from_dict(_data(excitation))
+    assert caught.value.field == "excitation.accelerations.2"
+    assert "m/s^2" not in str(caught.value) and ("> 0 g" in str(caught.value) or isinstance(value, str))
+
+
 def test_the_command_line_names_the_key_and_exits_2(tmp_path, capsys):
     path = tmp_path / "case.toml"
     path.write_text(textwrap.dedent("""

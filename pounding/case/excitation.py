@@ -21,7 +21,7 @@ from pathlib import Path
 
 from pounding import defaults
 from pounding.case.fields import build, check_keys, choice, number, quantity
-from pounding.errors import CaseError, quote
+from pounding.errors import CaseError, finite_number, quote
 from pounding.hazard.excitation import CloughPenzien, Excitation, KanaiTajimi, ShinozukaSato
 from pounding.hazard.sources import DesignSpectrum, RecordedMotions
 from pounding.units import STANDARD_GRAVITY, UnitSystem
@@ -133,7 +133,10 @@ def _design_target(table, code: str, where: str = _WHERE):
             raise CaseError(f"{where}.{key}", f"must be a list of at least 2 numbers, got {quote(values)}")
     if len(periods) != len(accelerations):
         raise CaseError(f"{where}.accelerations", f"must have one value per period: {len(accelerations)} against {len(periods)}")
-    in_g = [number({"value": v}, "value", f"{where}.accelerations.{i}") for i, v in enumerate(accelerations, start=1)]
+    in_g = [finite_number(f"{where}.accelerations.{i}", v) for i, v in enumerate(accelerations, start=1)]
+    for i, value in enumerate(in_g, start=1):
+        if not value > 0:  # named as written, in g, before the conversion
+            raise CaseError(f"{where}.accelerations.{i}", f"must be > 0 g, got {value:g} g")
     return build(where, TabulatedSpectrum, tuple(periods), tuple(a * STANDARD_GRAVITY for a in in_g))
 
 
