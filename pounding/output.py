@@ -39,7 +39,8 @@ _AFTER_STEM = re.compile(r"^(?:(?P<pid>\d{1,10})\.)?[a-z0-9_]{8}\.tmp$")
 _LEGACY_AGE = 60.0  # [s] a temporary file without a pid (written before pids were named) is stale after this
 
 
-def _kind(mode: int) -> str:
+def file_kind(mode: int) -> str:
+    """What a file of ``mode`` (``os.stat``'s ``st_mode``) is, in words: "a file", "a folder", "a device", "a pipe"..."""
     if stat.S_ISREG(mode):
         return "a file"
     if stat.S_ISDIR(mode):
@@ -139,13 +140,13 @@ def check_target(path, field: str = "path", make_parents: bool = False, probe: b
     real, shown = _real(path, field)
     status = _stat(real, field, shown)
     if status is not None and not stat.S_ISREG(status.st_mode):
-        raise ArgumentError(field, f"{shown!r} is {_kind(status.st_mode)}, not a regular file; give a file name")
+        raise ArgumentError(field, f"{shown!r} is {file_kind(status.st_mode)}, not a regular file; give a file name")
     folder = real.parent
     status = _stat(folder, field, shown)
     if status is None and not make_parents:
         raise ArgumentError(field, f"the folder {str(folder)!r} does not exist; create it first")
     if status is not None and not stat.S_ISDIR(status.st_mode):
-        raise ArgumentError(field, f"{str(folder)!r} is {_kind(status.st_mode)}, not a folder")
+        raise ArgumentError(field, f"{str(folder)!r} is {file_kind(status.st_mode)}, not a folder")
     if probe and status is not None:
         descriptor, name = _temporary(real, shown)
         os.close(descriptor)
@@ -173,7 +174,7 @@ def check_folder(path, field: str = "output_dir", create: bool = False) -> Path:
     real, shown = _real(path, field, "a folder")
     status = _stat(real, field, shown)
     if status is not None and not stat.S_ISDIR(status.st_mode):
-        raise ArgumentError(field, f"{shown!r} is {_kind(status.st_mode)}, not a folder; give a folder")
+        raise ArgumentError(field, f"{shown!r} is {file_kind(status.st_mode)}, not a folder; give a folder")
     if status is None and create:
         try:
             real.mkdir(parents=True, exist_ok=True)

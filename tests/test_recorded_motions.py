@@ -181,6 +181,18 @@ def test_a_time_step_no_record_has_is_refused_naming_the_file_and_line(tmp_path,
     assert len(err.splitlines()) == 1 and "odd.AT2:4" in err and "time step DT must lie in [1e-05, 1] s" in err
 
 
+@pytest.mark.parametrize("kind", ["folder", "pipe", "device"])
+def test_a_record_that_is_no_file_says_what_it_is(tmp_path, kind):
+    """Issue 33: a folder, a FIFO or a link to /dev/zero given as a record was "no such file"."""
+    import os
+
+    path = tmp_path / "odd.AT2"
+    {"folder": lambda: path.mkdir(), "pipe": lambda: os.mkfifo(path), "device": lambda: path.symlink_to("/dev/zero")}[kind]()
+    (tmp_path / "case.toml").write_text(_with_excitation('[excitation]\nrecords = ["odd.AT2"]\n'))
+    with pytest.raises(CaseError, match=f"odd.AT2: is a {kind}, not a file"):
+        load_case(tmp_path / "case.toml")
+
+
 def test_the_report_shows_the_periodogram_and_the_fitted_spectrum(suite, tmp_path):
     from pounding.report import write_report
 

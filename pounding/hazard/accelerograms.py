@@ -30,6 +30,7 @@ import numpy as np
 
 from pounding import defaults
 from pounding.errors import ArgumentError, CaseError, check_limit, described, finite_number, quote
+from pounding.output import file_kind
 from pounding.units import STANDARD_GRAVITY
 
 __all__ = [
@@ -131,6 +132,14 @@ class Accelerogram:
 # --- reading -----------------------------------------------------------------
 
 
+def _what(path: Path) -> str:
+    """What ``path`` is, following links ("a folder", "a pipe", "a device"...), or "a broken link"."""
+    try:
+        return file_kind(path.stat().st_mode)
+    except OSError:
+        return "a broken link"
+
+
 def _text(path: Path, name: str) -> str:
     """The file's text: UTF-8 (a byte-order mark allowed), not binary, within the size limit."""
     try:
@@ -138,7 +147,7 @@ def _text(path: Path, name: str) -> str:
     except (OSError, ValueError):  # a name too long, a NUL byte
         is_file = exists = False
     if not is_file:
-        what = "is not a file" if exists else "no such file"
+        what = f"is {_what(path)}, not a file" if exists else "no such file"
         raise CaseError(name, f"{what}; give an accelerogram file ({', '.join(SUFFIXES)})")
     try:
         with path.open("rb") as stream:
@@ -305,6 +314,8 @@ def expand_records(patterns, base_directory, field: str = "excitation.records") 
             magic = glob.has_magic(pattern)
             message = (f"matches no file in {quote(str(base), 80)}" if magic and not absolute
                        else "matches no file" if magic else "no such file")
+            if matches and not magic:  # there, but no regular file: say what it is
+                message = f"is {_what(Path(matches[0]) if absolute else base / matches[0])}, not a file; give an accelerogram file"
             raise CaseError(pattern, message).under(field)
         for match in files:
             path = Path(match) if absolute else base / match
