@@ -123,6 +123,8 @@ def _real(path, field: str, wanted: str = "a file name") -> tuple[Path, str]:
         raise ArgumentError(field, f"is empty; give {wanted}")
     given = Path(shown)
     real = Path(os.path.realpath(given)) if given.is_symlink() else given
+    if real != given and not os.path.lexists(real) and os.path.exists(given):
+        real = given  # a link the kernel resolves but no path names (/dev/stdout into a pipe: pipe:[...]): stat it as given
     return real, shown
 
 

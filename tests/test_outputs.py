@@ -72,6 +72,15 @@ def test_report_refuses_a_device_and_leaves_it_a_device(device, capsys):
     assert link.is_symlink() and stat.S_ISCHR(os.lstat(device).st_mode)
 
 
+def test_report_to_dev_stdout_into_a_pipe_names_the_pipe():
+    """Issue 33: /dev/stdout into a pipe resolves to no path (pipe:[...]); it failed with exit 1, "No such file or
+    directory". It is a pipe, not a file: exit 2 naming --output and what it is; into a file, the file is written."""
+    run = subprocess.run([sys.executable, "-m", "pounding", "report", PRESET, "-o", "/dev/stdout"], capture_output=True,
+                         text=True, timeout=300)
+    assert run.returncode == 2 and run.stdout == ""
+    assert "--output" in _one_line(run.stderr) and "is a pipe, not a regular file" in run.stderr
+
+
 @pytest.mark.parametrize("kind", ["folder", "symlink to a folder", "empty"])
 def test_report_refuses_a_folder_or_an_empty_name(tmp_path, capsys, kind):
     folder = tmp_path / "folder"
