@@ -151,7 +151,7 @@ def test_bad_case_file_names_the_field(tmp_path):
     out = run("simulate", str(path), "--records", "2")
     assert out.returncode == 2
     assert "contact.restitution" in out.stderr
-    assert "(0, 1]" in out.stderr
+    assert "[0.001, 1]" in out.stderr
 
 
 def test_command_line_imports_no_plotting_library():
