@@ -340,3 +340,25 @@ def test_a_contact_law_opensees_lacks_is_refused(tmp_path, capsys):
 def test_a_record_count_below_one_is_refused(tmp_path, capsys, records):
     run = _pounding(capsys, "export", "opensees", "section5-T2-0.4", "--records", records, "-o", str(tmp_path / "m"), check=False)
     _refused(run, "--records")
+
+
+def test_an_interrupted_export_leaves_no_model_that_lists_a_partial_set(tmp_path, monkeypatch):
+    """Issue 33: model.py is written last; an older one is removed first, so an export stopped while writing its records
+    leaves no model.py that would run a mix of old and new records."""
+    import pounding.export.opensees as opensees
+
+    folder = tmp_path / "model"
+    export_opensees(load_case("section5-T2-0.4"), folder, records=2, seed=1)
+    assert (folder / "model.py").exists()
+    original, calls = opensees.write_atomic, []
+
+    def interrupted(path, *args, **kwargs):
+        calls.append(path)
+        if len(calls) == 2:
+            raise KeyboardInterrupt
+        return original(path, *args, **kwargs)
+
+    monkeypatch.setattr(opensees, "write_atomic", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        export_opensees(load_case("section5-T2-0.4"), folder, records=3, seed=2)
+    assert not (folder / "model.py").exists()

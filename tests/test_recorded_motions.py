@@ -93,6 +93,29 @@ def test_pounding_records_writes_what_simulate_integrates(tmp_path, capsys):
     assert len(list((tmp_path / "csv").glob("*.csv"))) == 2
 
 
+def test_an_interrupted_records_run_leaves_a_marker_saying_the_set_is_partial(tmp_path, monkeypatch):
+    """Issue 33: an interrupted `pounding records` left complete files and nothing to say the set was partial; its
+    INCOMPLETE.txt stays behind until the last record is written, and a full run leaves none."""
+    import pounding.hazard.accelerograms as accelerograms
+
+    from pounding.cli.hazard import INCOMPLETE_MARKER
+
+    assert main(["records", PRESET, "--records", "3", "-o", str(tmp_path / "whole")]) == 0
+    assert not (tmp_path / "whole" / INCOMPLETE_MARKER).exists() and len(list((tmp_path / "whole").glob("*.AT2"))) == 3
+    original, calls = accelerograms.write_at2, []
+
+    def interrupted(*args, **kwargs):
+        calls.append(1)
+        if len(calls) == 3:
+            raise KeyboardInterrupt
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(accelerograms, "write_at2", interrupted)
+    assert main(["records", PRESET, "--records", "3", "-o", str(tmp_path / "part")]) == 130  # Ctrl-C's exit status
+    assert len(list((tmp_path / "part").glob("*.AT2"))) == 2
+    assert "stopped early" in (tmp_path / "part" / INCOMPLETE_MARKER).read_text()
+
+
 def test_records_bad_arguments_exit_2(capsys, tmp_path):
     assert main(["records", PRESET, "-o", str(tmp_path)]) == 2
     assert "--records" in capsys.readouterr().err

@@ -5,6 +5,10 @@ from __future__ import annotations
 
 import json
 
+INCOMPLETE_MARKER = "INCOMPLETE.txt"
+"""The file ``pounding records`` puts in its folder while it writes, removed after the last record: left behind by an
+interrupted run, it says the folder holds part of the set."""
+
 from pounding.units import STANDARD_GRAVITY
 
 __all__ = ["engineering_lines", "records_command"]
@@ -121,7 +125,7 @@ def records_command(args) -> int:
     from pounding.case.case import load_case
     from pounding.errors import ArgumentError
     from pounding.hazard.accelerograms import Accelerogram, write_at2, write_csv
-    from pounding.output import check_folder
+    from pounding.output import check_folder, write_atomic
     from pounding.simulation.ground_motion import check_suite_range, ground_motion_batches, suite_size
     from pounding.simulation.system import check_records
 
@@ -146,6 +150,10 @@ def records_command(args) -> int:
     width = len(str(records - 1))
     suffix = args.format.upper() if args.format == "at2" else "csv"
     written = []
+    marker = directory / INCOMPLETE_MARKER  # removed after the last record: left behind, it says the set is partial
+    write_atomic(marker, f"pounding records is writing {records} record(s) of {case.name} here. This file is removed "
+                         "when the last is written: if it remains, the run stopped early and the records here are not the "
+                         "whole set; run the command again.\n", "--output")
     for index in range(records):
         _, accelerations, time_step = next(ground_motion_batches(case, seed, [index]))
         name = f"record-{index:0{width}d}.{suffix}"
@@ -156,6 +164,7 @@ def records_command(args) -> int:
         else:
             write_csv(directory / name, record)
         written.append(name)
+    marker.unlink()
     if args.json:
         out = {"case": case.name, "seed": None if size else seed, "directory": str(directory), "files": written}
         if size:

@@ -157,6 +157,8 @@ def export_opensees(case: Case, directory, records: int, seed: int = defaults.SE
     records, seed, _ = check_records(records, seed, 0)
     check_suite_range(case, records, 0)
     folder = _writable_folder(directory, field)
+    # model.py comes last: an older one goes first, so a run stopped early leaves records and no model that lists them
+    (folder / "model.py").unlink(missing_ok=True)
     indices = np.arange(records)
     study = simulate(case, records=records, seed=seed)
     names = record_names(case, seed, indices)
