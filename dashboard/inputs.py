@@ -16,7 +16,7 @@ import param
 
 from pounding import defaults
 from pounding.case.excitation import GROUND_TYPES
-from pounding.mechanics.contact import CONTACT_MODELS, contact_law
+from pounding.mechanics.contact import CONTACT_MODELS, MIN_RESTITUTION, contact_law
 
 __all__ = [
     "DESIGN_CODE_KEYS",
@@ -143,7 +143,7 @@ class CaseInputs(param.Parameterized):
                                       doc="Probability of no pounding during the record that the gap needed must give.")
     capacity = param.Number(3e5, bounds=(0.0, None), inclusive_bounds=(False, True), label="capacity",
                             doc="A force the connection or slab edge takes: P(F_max > capacity) and the fragility curve.")
-    restitution = param.Number(0.65, bounds=(0.01, 1.0), label="restitution e [-]", doc="Coefficient of restitution of an impact, in (0, 1].")
+    restitution = param.Number(0.65, bounds=(MIN_RESTITUTION, 1.0), label="restitution e [-]", doc="Coefficient of restitution of an impact, from 0.001 to 1.")
     contact_model = param.Selector(default="jankowski", objects=list(CONTACT_MODELS), label="contact law",
                                    doc="Jankowski's nonlinear viscoelastic law (the paper's), Hertz, Hertzdamp, or linear viscoelastic.")
     contact_stiffness = param.Number(2e9, bounds=(0.0, None), inclusive_bounds=(False, True), label="contact stiffness",
