@@ -182,3 +182,26 @@ def test_where_the_closed_form_is_known_to_be_off_the_headlines_force_is_the_rec
             "the force above is the records&#x27; mean")
     assert said in page
     assert 'class="value fe-recommended"' not in page  # the closed form is beside the force, not the force
+
+
+def test_a_monte_carlo_study_of_the_gap_before_is_not_offered_beside_the_new_gap():
+    """Issue 34: a study run at one gap, then a new gap typed. The headline's estimate is the new gap's at once; the
+    plots (and their snapshot) come later. The study of the old gap is not offered beside the new estimate, even
+    before the plots come, and is offered again when the old gap is typed back."""
+    computations = []
+    model = PoundingModel(records=10, submit=computations.append)
+    _run(computations)
+    model.run_monte_carlo()
+    _wait_until(lambda: not model.monte_carlo_job.running)
+    study = model.monte_carlo_for_current_gap()
+    assert study is not None and study.gap == model.result.case.contact.gap
+    old_gap = model.gap
+    model.gap = 2 * old_gap
+    computations.pop(0)()  # the estimate only: the headline is the new gap's, the snapshot still the old one's
+    assert model.snapshot.case.contact.gap == study.gap != model.result.case.contact.gap
+    assert model.monte_carlo_for_current_gap() is None
+    assert "mc-verdict" not in headline_html(model.result, monte_carlo=model.monte_carlo_for_current_gap())
+    _run(computations)
+    model.gap = old_gap
+    _run(computations)
+    assert model.monte_carlo_for_current_gap() is study
