@@ -29,7 +29,7 @@ HEADLINE_CSS = """
 .headline .number .what { font-size: 12px; color: #444; }
 .headline p { margin: 4px 0; }
 .headline .verdict { font-weight: 600; }
-.headline .check-verdict { font-weight: 600; margin: 0 0 6px; }
+.headline .check-verdict { font-weight: 600; margin: 0 0 6px; min-height: 4.05em; }  /* three lines: the verdict replaces "Checking..." without moving the page */
 .headline .check-verdict.checking { font-weight: 400; color: #555; }
 .headline .check-verdict.failed { font-weight: 400; color: #8a4b00; }
 .headline .number .closed-form { font-size: 12px; color: #444; }

@@ -18,9 +18,10 @@ from pounding.simulation.monte_carlo import Cancelled
 
 __all__ = ["StudyJob", "check_pool"]
 
-CHECK_NICENESS = 10
-"""How much lower than the server's other threads the checks' thread runs (Linux ``nice``, 0 to 19): a check
-takes the cores the sessions' closed forms leave, never the other way round."""
+CHECK_NICENESS = 19
+"""How much lower than the server's other threads the checks' thread runs (Linux ``nice``, 0 to 19: the lowest):
+a check takes the cores that the sessions' closed forms, the server's loop and, on the same machine, the
+browsers' renderers (Chromium runs some at nice 10) leave, never the other way round."""
 
 
 @cache
@@ -40,9 +41,9 @@ def _lower_priority() -> None:
 
 @cache
 def check_pool() -> ThreadPoolExecutor:
-    """Shared by all sessions: the checks of their headlines, one at a time on one thread of lower priority (each
-    check runs on one core), so that the closed forms of every session keep the other core and a share of this
-    one; made on first use."""
+    """Shared by all sessions: the checks of their headlines, one at a time on one thread of the lowest priority
+    (each check runs on one core), so that the closed forms of every session keep the other core and what they
+    need of this one; made on first use."""
     return ThreadPoolExecutor(max_workers=1, thread_name_prefix="pounding-check", initializer=_lower_priority)
 
 

@@ -49,8 +49,9 @@ class Studies(param.Parameterized):
     check_job = param.ClassSelector(class_=StudyJob, precedence=-1, doc="The check of the estimate shown against simulated "
                                     "records, run after each change: its result (the Estimate checked, its EstimateCheck), or None.")
 
-    def _make_jobs(self, check: bool = True) -> None:
-        """``check``: whether each new estimate is checked against simulated records by itself."""
+    def _make_jobs(self, check: bool) -> None:
+        """The three jobs; ``check``: whether each new estimate is checked against simulated records by itself
+        (kept as :attr:`checks`)."""
         self.monte_carlo_job = StudyJob(schedule=self._schedule, title="Monte Carlo")
         self.design_gap_job = StudyJob(schedule=self._schedule, title="Monte Carlo design gap", detail=" (free motion)")
         self.check_job = StudyJob(schedule=self._schedule, submit=check_pool().submit, title="Check against simulated records")
@@ -58,7 +59,7 @@ class Studies(param.Parameterized):
         self._mc_case_key = None
         self._mc_gap: float | None = None
         self._design_gap_key = None
-        self._checked: tuple | None = None  # (what the last check ended was of, its EstimateCheck)
+        self._checked: tuple | None = None  # (_check_key of the last check that ended, its EstimateCheck)
         self._checking = None  # the Estimate whose check was started last
 
     # --- the check of the headline ------------------------------------------------------
@@ -94,10 +95,10 @@ class Studies(param.Parameterized):
             return
         plan = MonteCarloPlan(seed=self.seed, settings=Settings(workers=CHECK_THREADS))
 
-        def study(progress, cancel):
+        def study(progress, cancel):  # no progress: the page shows none, and each report would cost the loop a callback
             if cancel.wait(CHECK_DELAY):
                 raise Cancelled("a newer change came first")
-            return check_estimate(result, dataclasses.replace(plan, progress=progress, cancel=cancel))
+            return check_estimate(result, dataclasses.replace(plan, cancel=cancel))
 
         def keep(check: EstimateCheck):
             self._checked = (key, check)
