@@ -4,10 +4,11 @@ Serves ``dashboard/app.py`` with ``panel serve`` on a free port, opens it in hea
 (/usr/bin/chromium), types T2 (alternately 0.45 and 0.40 s, Enter) and waits (a MutationObserver on the
 headline) until the expected extreme force shown differs from the value before; the time runs from the
 page's clock just before the key press to two animation frames after the new text. The plot's time runs to
-the frame where the force-against-gap curve's data changed. Reports one session (changes from a settled
-page), then 5 sessions changing T2 at once, 1 s apart: 5 pages, each in its own browser context (its own
-renderer, websocket and server session) of one Chromium on this machine, so on 2 cores the 5 renderers
-compete with the server for the CPU.
+the frame where the force-against-gap curve's data changed; the verdict's (one session only, where the
+dashboard checks its headline against simulated records) to the frame where the new verdict stands under
+the headline. Reports one session (changes from a settled page), then 5 sessions changing T2 at once, 1 s
+apart: 5 pages, each in its own browser context (its own renderer, websocket and server session) of one
+Chromium on this machine, so on 2 cores the 5 renderers compete with the server for the CPU.
 
 Each way of serving is measured in turn (``--args --compute`` of dashboard/app.py and ``--num-procs``):
 the sessions' computations on the server's shared thread pool (the default), on the event loop (inline),
@@ -21,6 +22,7 @@ from __future__ import annotations
 import asyncio
 import os
 import re
+import signal
 import statistics
 import subprocess
 import sys
@@ -44,7 +46,7 @@ def serve(compute: str = "threads", processes: int = 1):
     process = subprocess.Popen(
         [sys.executable, "-m", "panel", "serve", str(ROOT / "dashboard" / "app.py"), "--port", "0", "--num-procs", str(processes),
          "--args", "--compute", compute],
-        cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+        cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True,
     )
     for line in process.stdout:
         match = re.search(r"(http://localhost:\d+/app)", line)
@@ -52,6 +54,19 @@ def serve(compute: str = "threads", processes: int = 1):
             threading.Thread(target=lambda: [None for _ in process.stdout], daemon=True).start()
             return process, match.group(1)
     raise RuntimeError("panel serve did not start")
+
+
+def stop(process) -> None:
+    """End the server and every process it forked (``--num-procs``: its children outlive a SIGTERM to it alone)."""
+    for sig in (signal.SIGTERM, signal.SIGKILL):
+        try:
+            os.killpg(process.pid, sig)
+            process.wait(timeout=10)
+            return
+        except ProcessLookupError:
+            return
+        except subprocess.TimeoutExpired:
+            continue
 
 
 async def open_session(browser, url):
@@ -85,6 +100,17 @@ WATCH_FE = """() => {
         });
         observer.observe(root, {subtree: true, childList: true, characterData: true});
     });
+    // The verdict of the check against simulated records: a new one under the headline (none: NaN at once).
+    const verdict = () => { const el = root.querySelector('.check-verdict');
+        return el && !el.classList.contains('checking') ? el.textContent.trim() : null; };
+    const verdictBefore = verdict();
+    window.__verdictChanged = root.querySelector('.check-verdict') === null ? Promise.resolve(NaN) : new Promise((resolve) => {
+        const observer = new MutationObserver(() => {
+            const now = verdict();
+            if (now !== null && now !== verdictBefore) { observer.disconnect(); requestAnimationFrame(() => requestAnimationFrame(() => resolve(performance.now()))); }
+        });
+        observer.observe(root, {subtree: true, childList: true, characterData: true});
+    });
     // The plot: the force-against-gap source's data replaced (its 'paper' column marks it).
     const source = window.Bokeh.documents.flatMap(d => Array.from(d.all_models)).find(
         m => m.data != null && typeof m.data === 'object' && (m.data instanceof Map ? m.data.has('paper') : 'paper' in m.data));
@@ -98,10 +124,10 @@ WATCH_FE = """() => {
 }"""
 
 
-async def measure(page, field, n: int, settle_ms: int = 0, plots: list | None = None) -> list[float]:
-    """Latencies of ``n`` changes [ms] to the new force (and, into ``plots``, to the redrawn plot); ``settle_ms``
-    is a pause before each change, so that the previous change's plots have been drawn (a user who reads the
-    number before changing an input again)."""
+async def measure(page, field, n: int, settle_ms: int = 0, plots: list | None = None, verdicts: list | None = None) -> list[float]:
+    """Latencies of ``n`` changes [ms] to the new force (and, into ``plots``, to the redrawn plot; into ``verdicts``,
+    to the new verdict, waited for before the next change); ``settle_ms`` is a pause before each change, so that
+    the previous change's plots have been drawn (a user who reads the number before changing an input again)."""
     times = []
     for i in range(n):
         if settle_ms:
@@ -115,6 +141,9 @@ async def measure(page, field, n: int, settle_ms: int = 0, plots: list | None = 
         plotted = await page.evaluate("() => Promise.race([window.__plotChanged, new Promise(r => setTimeout(() => r(NaN), 30000))])")
         if plots is not None:
             plots.append(plotted - start_ms)
+        if verdicts is not None:
+            checked = await page.evaluate("() => Promise.race([window.__verdictChanged, new Promise(r => setTimeout(() => r(NaN), 30000))])")
+            verdicts.append(checked - start_ms)
     return times
 
 
@@ -134,10 +163,13 @@ async def run(process, url, label: str) -> None:
         await page.wait_for_timeout(1000)
         cpu_before = cpu_seconds(process.pid)
         plots: list[float] = []
-        settled = await measure(page, field, 10, settle_ms=1000, plots=plots)
+        verdicts: list[float] = []
+        settled = await measure(page, field, 10, settle_ms=1000, plots=plots, verdicts=verdicts)
         await page.wait_for_timeout(1000)
         server_ms = (cpu_seconds(process.pid) - cpu_before) * 100  # [ms] per change, of 10 (the first process only)
-        print(f"[{label}] one session: new force {summary(settled)}; plot {summary(plots)}; server CPU {server_ms:.0f} ms per change")
+        verdict = f"verdict {summary(verdicts)}; " if any(v == v for v in verdicts) else ""
+        print(f"[{label}] one session: new force {summary(settled)}; plot {summary(plots)}; {verdict}"
+              f"server CPU {server_ms:.0f} ms per change (the check's included)")
         await page.context.close()
 
         sessions = [await open_session(browser, url) for _ in range(5)]
@@ -158,8 +190,7 @@ def main() -> None:
         try:
             asyncio.run(run(process, url, f"{compute}, {processes} process(es)"))
         finally:
-            process.terminate()
-            process.wait(timeout=10)
+            stop(process)
 
 
 if __name__ == "__main__":

@@ -1,17 +1,25 @@
 """The dashboard's headline: the answer first (the expected extreme force, its
-84th percentile, the probability of pounding, the gap needed), the Monte Carlo
-verdict once a study has run, the warnings in one or two sentences with their
-advice in the page's terms (dropped once followed), and the diagnostics folded
-away. Every number comes from the library's estimate; this only formats it."""
+84th percentile, the probability of pounding, the gap needed), the verdict of
+its check against simulated records under it (and, where the closed form does
+not agree, the records' force and gap in its place), the Monte Carlo verdict
+once a study has run, the warnings in one or two sentences with their advice in
+the page's terms (dropped once followed), and the diagnostics folded away.
+Every number comes from the library's estimate and its check
+(``pounding.studies.check.EstimateCheck``); this only formats them."""
 
 from __future__ import annotations
 
 import html
+import math
 
 from pounding.display_units import display
 from pounding.report import monte_carlo_check
+from pounding.studies.check import unpounded_bound
 
-__all__ = ["HEADLINE_CSS", "headline_html"]
+__all__ = ["CHECKING", "HEADLINE_CSS", "headline_html"]
+
+CHECKING = "Checking against simulated records\u2026"
+"""The verdict line while the check of the estimate shown runs."""
 
 HEADLINE_CSS = """
 .headline { font-size: 14px; line-height: 1.35; }
@@ -21,6 +29,10 @@ HEADLINE_CSS = """
 .headline .number .what { font-size: 12px; color: #444; }
 .headline p { margin: 4px 0; }
 .headline .verdict { font-weight: 600; }
+.headline .check-verdict { font-weight: 600; margin: 0 0 6px; min-height: 4.05em; }  /* three lines: the verdict replaces "Checking..." without moving the page */
+.headline .check-verdict.checking { font-weight: 400; color: #555; }
+.headline .check-verdict.failed { font-weight: 400; color: #8a4b00; }
+.headline .number .closed-form { font-size: 12px; color: #444; }
 .headline .warning { color: #8a4b00; }
 .headline .accuracy { color: #555; font-size: 12px; }
 .headline details { font-size: 12px; color: #333; margin-top: 6px; }
@@ -50,26 +62,83 @@ def _number(value: str, what: str, css: str) -> str:
     return f'<div class="number"><span class="value {css}">{value}</span><span class="what">{what}</span></div>'
 
 
+def _records_of(check) -> str:
+    """The records of a check in words: "144 simulated records", "14 recorded motions"."""
+    plural = "s" if check.records != 1 else ""
+    return f"{check.records} recorded motion{plural}" if check.seed is None else f"{check.records} simulated record{plural}"
+
+
+def check_sentence(check, units: str = "SI") -> str:
+    """The verdict of an :class:`~pounding.studies.check.EstimateCheck` in one sentence, every number with its unit:
+    what the records gave, whether the closed form agrees, and which force and gap the headline shows."""
+    shown = display(units)
+    force, length = shown.force, shown.length
+    low, high = check.force_max_confidence_interval
+    if check.force_max_mean == 0.0:
+        found = f"none pounded (pounding below {100 * unpounded_bound(check.records):.1f} %, 95 % confidence)"
+        verdict = ("the closed form agrees" if check.agrees else f"the closed form's probability of pounding, "
+                   f"{100 * check.closed_form_pounding_probability:.1f} %, is more than they allow: the force above is theirs")
+    else:
+        interval = f"95 % interval {force(low)} to {force(high)}" if math.isfinite(high - low) else "one record, no interval"
+        found = f"{force(check.force_max_mean)} ({interval})"
+        side = "under" if check.error < 0 else "over"
+        verdict = ("the closed form agrees" if check.agrees else f"the closed form's {force(check.closed_form_force)} is "
+                   f"{100 * abs(check.error):.0f} % {side} it: the force above is the records' mean")
+    gap = ""
+    if check.gap_source != "closed form":
+        gap = (f"; for {100 * check.target_probability:.4g} % no pounding they need a gap of {length(check.required_gap)}, "
+               f"more than the closed form's {length(check.closed_form_gap)}: the gap above is theirs")
+    return f"Checked on {_records_of(check)}: {found}; {verdict}{gap}."
+
+
+def _check_line(check, units: str, checking: bool, check_error: str) -> str:
+    """The line under the numbers: the check's verdict, or that it runs, or why it failed; '' without a check."""
+    if check is not None:
+        return f'<p class="check-verdict">{html.escape(check_sentence(check, units))}</p>'
+    if check_error:
+        return f'<p class="check-verdict failed">Could not check against simulated records: {html.escape(check_error)}</p>'
+    return f'<p class="check-verdict checking">{CHECKING}</p>' if checking else ""
+
+
 def headline_html(result, units: str = "SI", capacity: float | None = None, monte_carlo=None, design_gap=None,
-                  name: str = "") -> str:
+                  name: str = "", check=None, checking: bool = False, check_error: str = "") -> str:
     """The headline of an :class:`~pounding.closed_form.estimator.Estimate` ``result``; ``capacity`` [N] adds P(F_max > capacity);
     ``monte_carlo`` a :class:`~pounding.report.MonteCarloPoint` of exactly this case, ``design_gap`` its Monte Carlo
-    design gap, each when run."""
+    design gap, each when run. ``check``, the :class:`~pounding.studies.check.EstimateCheck` of exactly ``result``,
+    puts its verdict under the numbers; where the closed form does not agree, the force and its 84th percentile
+    are the records' (the closed form's beside them), and where the records need a wider gap, the gap is theirs.
+    Without it, ``checking`` says that the check runs, ``check_error`` why it failed."""
     shown = display(units)
     case = result.case
     distribution = result.force_max_distribution
+    closed_force, closed_f84 = shown.force(result.force_expected), shown.force(distribution.quantile(0.84))
+    closed_gap = shown.length(result.required_gap)
+    force = _number(closed_force, "expected extreme force E[F<sub>max</sub>]", "fe-recommended")
+    f84 = _number(closed_f84, "84th percentile of F<sub>max</sub>", "f84")
+    gap = _number(closed_gap, f"gap for {100 * result.target_probability:.4g} % no pounding", "required-gap")
+    if check is not None and not check.agrees:
+        records = _records_of(check)
+        force = _number(shown.force(check.force_answer), f"expected extreme force E[F<sub>max</sub>]: mean of {records}"
+                        f'<span class="closed-form"> (closed form <span class="fe-recommended">{closed_force}</span>)</span>',
+                        "force-answer")
+        f84 = _number(shown.force(check.force_max_quantiles["0.84"]), f"84th percentile of F<sub>max</sub>, {records}"
+                      f'<span class="closed-form"> (closed form <span class="f84">{closed_f84}</span>)</span>', "check-f84")
+    if check is not None and check.gap_source != "closed form":
+        gap = _number(shown.length(check.gap_answer), f"gap for {100 * result.target_probability:.4g} % no pounding, "
+                      f'from {_records_of(check)}<span class="closed-form"> (closed form <span class="required-gap">'
+                      f"{closed_gap}</span>)</span>", "gap-answer")
     numbers = [
-        _number(shown.force(result.force_expected), "expected extreme force E[F<sub>max</sub>]", "fe-recommended"),
-        _number(shown.force(distribution.quantile(0.84)), "84th percentile of F<sub>max</sub>", "f84"),
+        force,
+        f84,
         _number(f"{100 * result.pounding_probability:.3g} %", f"probability of pounding in {case.excitation.duration:.3g} s "
                 f"at a gap of {shown.length(case.contact.gap)}", "pounding-probability"),
-        _number(shown.length(result.required_gap), f"gap for {100 * result.target_probability:.4g} % no pounding", "required-gap"),
+        gap,
     ]
     if capacity is not None:
         numbers.append(_number(f"{100 * result.probability_exceeding(capacity):.3g} %", f"P(F<sub>max</sub> &gt; {shown.force(capacity)})",
                                "p-exceed"))
-    lines = []
-    done = set()
+    lines = [_check_line(check, units, checking, check_error)]
+    done = {"monte_carlo", "design_gap"} if check is not None else set()  # the check is the study the advice asks for
     if monte_carlo is not None:
         done.add("monte_carlo")
         text = monte_carlo_check(result.force_expected, monte_carlo).text

@@ -1,9 +1,11 @@
 """A Monte Carlo study of the dashboard as one job (:class:`StudyJob`): run on a worker thread, its progress,
-result and error handed back to the session's event loop, cancelled on request. The reduced-sample Monte Carlo
-and the Monte Carlo design gap are two instances; the view binds to their parameters."""
+result and error handed back to the session's event loop, cancelled on request. The reduced-sample Monte Carlo,
+the Monte Carlo design gap and the check of the headline against simulated records are three instances; the
+view binds to their parameters."""
 
 from __future__ import annotations
 
+import os
 import threading
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
@@ -14,13 +16,35 @@ import param
 from dashboard.messages import message
 from pounding.simulation.monte_carlo import Cancelled
 
-__all__ = ["StudyJob"]
+__all__ = ["StudyJob", "check_pool"]
+
+CHECK_NICENESS = 19
+"""How much lower than the server's other threads the checks' thread runs (Linux ``nice``, 0 to 19: the lowest):
+a check takes the cores that the sessions' closed forms, the server's loop and, on the same machine, the
+browsers' renderers (Chromium runs some at nice 10) leave, never the other way round."""
 
 
 @cache
 def _studies_pool() -> ThreadPoolExecutor:
     """Shared by all sessions: at most two studies at a time (each uses every core); made on first use."""
     return ThreadPoolExecutor(max_workers=2, thread_name_prefix="pounding-mc")
+
+
+def _lower_priority() -> None:
+    """Lower the calling thread's scheduling priority by :data:`CHECK_NICENESS` (Linux: a thread's own nice value,
+    which the threads it starts inherit); elsewhere nothing."""
+    try:
+        os.setpriority(os.PRIO_PROCESS, threading.get_native_id(), CHECK_NICENESS)
+    except (AttributeError, OSError):
+        pass
+
+
+@cache
+def check_pool() -> ThreadPoolExecutor:
+    """Shared by all sessions: the checks of their headlines, one at a time on one thread of the lowest priority
+    (each check runs on one core), so that the closed forms of every session keep the other core and what they
+    need of this one; made on first use."""
+    return ThreadPoolExecutor(max_workers=1, thread_name_prefix="pounding-check", initializer=_lower_priority)
 
 
 class StudyJob(param.Parameterized):
@@ -38,18 +62,23 @@ class StudyJob(param.Parameterized):
     result = param.Parameter(None, doc="What the last study gave, kept while it holds for the inputs; None before.")
     error = param.String("", doc="Why the last study failed (one sentence naming the input), or ''.")
 
-    def __init__(self, schedule: Callable | None = None, **params):
+    def __init__(self, schedule: Callable | None = None, submit: Callable | None = None, **params):
+        """``submit(fn)`` runs ``fn`` on a worker thread (default: the studies' pool, two at a time)."""
         super().__init__(**params)
         self._schedule = schedule or (lambda fn: fn())
+        self._submit = submit or _studies_pool().submit
         self._cancel: threading.Event | None = None
 
-    def start(self, study: Callable, records: int, keep: Callable | None = None) -> bool:
+    def start(self, study: Callable, records: int, keep: Callable | None = None, replace: bool = False) -> bool:
         """Run ``study(progress=..., cancel=...)`` of ``records`` records on a worker thread, unless one runs.
 
         ``keep(result)``, called on the event loop when the study ends uncancelled, gives the job's new
-        :attr:`result` (default: the study's result). Returns whether it started."""
-        if self.running:
+        :attr:`result` (default: the study's result). ``replace``: a running study is cancelled and this one
+        starts at once (whatever the old one still delivers is dropped). Returns whether it started."""
+        if self.running and not replace:
             return False
+        if self._cancel is not None:
+            self._cancel.set()
         cancel = threading.Event()
         self._cancel = cancel  # before submitting: with an inline schedule the study may end before this returns
         self.param.update(running=True, progress=0, error="", status=f"{self.title}: 0 of {records} records{self.detail}")
@@ -70,7 +99,7 @@ class StudyJob(param.Parameterized):
             else:
                 self._schedule(lambda: self._finished(cancel, result, None, keep))
 
-        _studies_pool().submit(work)
+        self._submit(work)
         return True
 
     def cancel(self, reason: str = "") -> None:
@@ -109,5 +138,7 @@ class StudyJob(param.Parameterized):
 
 
 def _records(result) -> int:
-    """How many records a study's result holds (a Monte Carlo result, or a design gap)."""
-    return result.n_records
+    """How many records a study's result holds (a Monte Carlo result or a design gap: ``n_records``; a check of
+    the estimate: ``records``)."""
+    count = getattr(result, "n_records", None)
+    return result.records if count is None else count

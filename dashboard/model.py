@@ -7,7 +7,9 @@ unit system shown, and handed to ``pounding.case.case.case_from_dict``: the libr
 converts units, derives and validates, and its ``CaseError`` names the field as
 a case file would. Each change is computed off the event loop, the newest only
 (``runner.Latest``): first the estimate (the headline), then everything the
-plots show (``pounding.report.compute_snapshot``, reusing the estimate).
+plots show (``pounding.report.compute_snapshot``, reusing the estimate), and,
+on a thread of its own, the estimate's check against simulated records
+(``studies.Studies``), which the next change cancels.
 
 No Panel here: the view (``view.py``) builds widgets from these parameters.
 """
@@ -75,9 +77,12 @@ class PoundingModel(CaseInputs, Studies):
     note = param.String("", precedence=-1, doc="A change that moved another input, said once.")
     uploaded = param.List([], precedence=-1, doc="Names of the uploaded records.")
 
-    def __init__(self, schedule: Callable | None = None, batch=None, submit: Callable | None = None, **params):
+    def __init__(self, schedule: Callable | None = None, batch=None, submit: Callable | None = None, check: bool = False,
+                 **params):
         """``schedule(fn)`` runs ``fn`` on the session's event loop (default: at once); ``batch()`` is a context
-        manager around each update of the outputs; ``submit(fn)`` runs a computation (default: at once, here)."""
+        manager around each update of the outputs; ``submit(fn)`` runs a computation (default: at once, here);
+        ``check``: each new estimate is checked against simulated records in the background (the dashboard's
+        view asks for it; off by default, so that a model made for a computation starts no study)."""
         params.setdefault("building_1", BuildingInputs(number=1, period=1.2))
         params.setdefault("building_2", BuildingInputs(number=2, period=0.4))
         super().__init__(**params)
@@ -85,7 +90,7 @@ class PoundingModel(CaseInputs, Studies):
         self._batch = batch or contextlib.nullcontext
         self._compute_off_loop = submit or (lambda fn: fn())
         self._latest = Latest(self._compute_off_loop, self._schedule)
-        self._make_jobs()
+        self._make_jobs(check)
         self._syncing = False
         self._extra: dict = {}
         self._description = ""
@@ -263,6 +268,7 @@ class PoundingModel(CaseInputs, Studies):
         """Compute every output for the current inputs, the newest request only: the estimate, then the plots."""
         data = self.case_file()
         self._derive_stiffness()
+        self._inputs_changed()
         self._latest.request(lambda current, deliver: self._compute(data, current, deliver))
 
     def _derive_stiffness(self) -> None:
@@ -312,6 +318,7 @@ class PoundingModel(CaseInputs, Studies):
     def _estimated(self, case, result) -> None:
         with self._batch():
             self._invalidate_studies(case)
+            self._check(result)  # its thread waits a moment: the headline goes out first
             self.param.update(result=result, error="")
 
     def _snapshot_ready(self, snapshot) -> None:

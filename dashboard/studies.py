@@ -1,7 +1,7 @@
-"""The dashboard's Monte Carlo studies: the reduced-sample study of the current
-case and its Monte Carlo design gap (``pounding.simulation.monte_carlo.design_gap``), each
-a :class:`~dashboard.jobs.StudyJob`; a change of inputs cancels a running study and drops
-results that no longer hold."""
+"""The dashboard's Monte Carlo studies: the check of the headline against simulated records, run by itself after
+each change (``pounding.studies.check.check_estimate``), the reduced-sample study of the current case and its
+Monte Carlo design gap (``pounding.simulation.monte_carlo.design_gap``), each a :class:`~dashboard.jobs.StudyJob`;
+a change of inputs cancels a running study and drops results that no longer hold."""
 
 from __future__ import annotations
 
@@ -11,10 +11,13 @@ from functools import partial
 
 import param
 
-from dashboard.jobs import StudyJob
+from dashboard.jobs import StudyJob, check_pool
 from pounding import defaults, simulate
 from pounding.report import DEFAULT_SEED, MonteCarloPoint
-from pounding.simulation.monte_carlo import DesignGap, design_gap
+from pounding.simulation.monte_carlo import Cancelled, DesignGap, design_gap
+from pounding.simulation.plan import MonteCarloPlan
+from pounding.simulation.system import Settings
+from pounding.studies.check import EstimateCheck, check_estimate
 
 __all__ = ["Studies"]
 
@@ -22,12 +25,18 @@ CHANGED = "the inputs changed."
 """Why a result was dropped."""
 CHANGED_WHILE_RUNNING = "the inputs changed while it ran."
 """Why a study was cancelled by the inputs."""
+CHECK_DELAY = 0.25
+"""Seconds a check waits after the headline before it starts, so that typing (a change every few tenths of a
+second) starts one check, not one a keystroke; a newer change ends the wait at once."""
+CHECK_THREADS = 1
+"""Threads of one check: one core, whatever the machine has; the sessions' closed forms keep the others."""
 
 
 class Studies(param.Parameterized):
-    """The studies' inputs and their two jobs; mixed into the dashboard's model, which provides ``snapshot`` and
-    ``_schedule`` (run on the session's loop) before calling :meth:`_make_jobs`, and calls
-    :meth:`_invalidate_studies` on every new case."""
+    """The studies' inputs and their three jobs; mixed into the dashboard's model, which provides ``result``,
+    ``snapshot`` and ``_schedule`` (run on the session's loop) before calling :meth:`_make_jobs`, calls
+    :meth:`_inputs_changed` on every change of input, :meth:`_invalidate_studies` on every new case and
+    :meth:`_check` on every new estimate."""
 
     records = param.Integer(defaults.DASHBOARD_RECORDS, bounds=(10, 2000), label="records",
                             doc="Records of the Monte Carlo study and of the Monte Carlo design gap.")
@@ -37,13 +46,65 @@ class Studies(param.Parameterized):
                                           "case: its result the MonteCarloPoint of each gap run (a tuple), or None.")
     design_gap_job = param.ClassSelector(class_=StudyJob, precedence=-1, doc="The Monte Carlo design gap of the current case: "
                                          "its result a pounding.simulation.monte_carlo.DesignGap (it holds at any gap), or None.")
+    check_job = param.ClassSelector(class_=StudyJob, precedence=-1, doc="The check of the estimate shown against simulated "
+                                    "records, run after each change: its result (the Estimate checked, its EstimateCheck), or None.")
 
-    def _make_jobs(self) -> None:
+    def _make_jobs(self, check: bool) -> None:
+        """The three jobs; ``check``: whether each new estimate is checked against simulated records by itself
+        (kept as :attr:`checks`)."""
         self.monte_carlo_job = StudyJob(schedule=self._schedule, title="Monte Carlo")
         self.design_gap_job = StudyJob(schedule=self._schedule, title="Monte Carlo design gap", detail=" (free motion)")
+        self.check_job = StudyJob(schedule=self._schedule, submit=check_pool().submit, title="Check against simulated records")
+        self.checks = check
         self._mc_case_key = None
         self._mc_gap: float | None = None
         self._design_gap_key = None
+        self._checked: tuple | None = None  # (_check_key of the last check that ended, its EstimateCheck)
+        self._checking = None  # the Estimate whose check was started last
+
+    # --- the check of the headline ------------------------------------------------------
+
+    def current_check(self) -> EstimateCheck | None:
+        """The check of exactly the estimate shown (``result``), once it has ended; None before, and for any other."""
+        found = self.check_job.result
+        if found is None or self.result is None:
+            return None
+        checked, check = found
+        return check if checked is self.result else None
+
+    def check_error(self) -> str:
+        """Why the check of the estimate shown failed, or ''."""
+        return self.check_job.error if self.result is not None and self._checking is self.result else ""
+
+    def _inputs_changed(self) -> None:
+        """A change of input, on the event loop, before its estimate: the check running is of other inputs; it
+        stops after its current chunk of records, and nothing it gives is kept or shown."""
+        self.check_job.cancel(CHANGED_WHILE_RUNNING)
+        self.check_job.clear(CHANGED)
+
+    def _check(self, result) -> None:
+        """Check the estimate ``result`` (about to be shown) against simulated records on the checks' thread: seeded
+        as the other studies of the page (``seed``), as many records as the precision asks, one core; after
+        :data:`CHECK_DELAY`. A check of the same case, target and seed already done is shown at once."""
+        if not self.checks:
+            return
+        self._checking = result
+        key = _check_key(result, self.seed)
+        if key is not None and self._checked is not None and _same(key, self._checked[0]):
+            self.check_job.param.update(result=(result, self._checked[1]), error="")
+            return
+        plan = MonteCarloPlan(seed=self.seed, settings=Settings(workers=CHECK_THREADS))
+
+        def study(progress, cancel):  # no progress: the page shows none, and each report would cost the loop a callback
+            if cancel.wait(CHECK_DELAY):
+                raise Cancelled("a newer change came first")
+            return check_estimate(result, dataclasses.replace(plan, cancel=cancel))
+
+        def keep(check: EstimateCheck):
+            self._checked = (key, check)
+            return result, check
+
+        self.check_job.start(study, defaults.CHECK_FIRST_RECORDS, keep=keep, replace=True)
 
     def monte_carlo_points(self) -> tuple[MonteCarloPoint, ...]:
         """The studies of the current case, one per gap run (any gap)."""
@@ -73,10 +134,11 @@ class Studies(param.Parameterized):
             self.design_gap_job.clear(CHANGED)
 
     def monte_carlo_for_current_gap(self) -> MonteCarloPoint | None:
-        """The latest study of exactly the current case, if any."""
-        if self.snapshot is None:
+        """The latest study of exactly the case of the estimate shown (``result``: the plots may still be of the
+        inputs before), if any."""
+        if self.result is None:
             return None
-        gap = self.snapshot.case.contact.gap
+        gap = self.result.case.contact.gap
         matching = [m for m in self.monte_carlo_points() if _same(m.gap, gap)]
         return matching[-1] if matching else None
 
@@ -90,10 +152,10 @@ class Studies(param.Parameterized):
                                keep=lambda result: (*self.monte_carlo_points(), MonteCarloPoint.from_result(result)))
 
     def current_design_gap(self) -> DesignGap | None:
-        """The Monte Carlo design gap of the current case, for the closed form's
-        target probability, if one was run."""
+        """The Monte Carlo design gap of the current case, for the target probability of the estimate shown, if
+        one was run."""
         result = self.design_gap_job.result
-        if self.snapshot is None or result is None or result.target_probability != self.snapshot.estimate.target_probability:
+        if self.result is None or result is None or result.target_probability != self.result.target_probability:
             return None
         return result
 
@@ -119,6 +181,16 @@ class Studies(param.Parameterized):
 def _study_key(case):
     """What a study with contact depends on apart from the gap (its points share one plot)."""
     return None if case is None else (case.buildings, case.excitation, dataclasses.replace(case.contact, gap=0.0))
+
+
+def _check_key(result, seed: int):
+    """What a check of the estimate ``result`` depends on: its case (synthetic records: drawn from its excitation),
+    its target probability and the seed. A case of recorded motions has none (its records are not compared): it
+    is checked anew."""
+    case = result.case
+    if case.recorded:
+        return None
+    return (case.buildings, case.excitation, case.contact, result.target_probability, seed)
 
 
 def _free_motion_key(case):

@@ -76,7 +76,7 @@ class PoundingDashboard(pn.viewable.Viewer):
             schedule = (lambda fn: doc.add_next_tick_callback(fn)) if doc else None
             batch = (lambda: pn.io.hold(doc)) if doc else None
             submit = shared_pool().submit if doc and not compute_inline else None
-            params["model"] = PoundingModel(schedule=schedule, batch=batch, submit=submit)
+            params["model"] = PoundingModel(schedule=schedule, batch=batch, submit=submit, check=True)
         super().__init__(**params)
         self._delay = (lambda fn: doc.add_timeout_callback(fn, REDRAW_DELAY_MS)) if doc else (lambda fn: fn())
         self._batch = (lambda: pn.io.hold(doc)) if doc else contextlib.nullcontext
@@ -152,7 +152,7 @@ class PoundingDashboard(pn.viewable.Viewer):
         self.note = pn.pane.Markdown(m.param.note, css_classes=["change-note"], visible=pn.bind(bool, m.param.note), sizing_mode="stretch_width")
         self.headline = pn.pane.HTML(
             pn.bind(self._headline, m.param.result, m.param.units, m.param.capacity, m.monte_carlo_job.param.result,
-                    m.design_gap_job.param.result, m.param.error),
+                    m.design_gap_job.param.result, m.param.error, m.check_job.param.result, m.check_job.param.error),
             stylesheets=[HEADLINE_CSS], sizing_mode="stretch_width", min_width=380,
         )
         self.export = pn.widgets.FileDownload(callback=self._export, filename="pounding-report.html", label="Export report (HTML)",
@@ -237,13 +237,15 @@ class PoundingDashboard(pn.viewable.Viewer):
 
     # --- outputs -------------------------------------------------------------------
 
-    def _headline(self, result, units, capacity, _points, _design_gap, error) -> str:
+    def _headline(self, result, units, capacity, _points, _design_gap, error, _check, _check_error) -> str:
         m = self.model
         if result is None:
             text = "No result: the inputs are invalid (see the message above)." if error else "Computing..."
             return f'<div class="headline stale"><p>{text}</p></div>'
         capacity_si = display(units).to_si(capacity, force=1)
-        return headline_html(result, units, capacity_si, m.monte_carlo_for_current_gap(), m.current_design_gap(), m.case_name())
+        check, check_error = m.current_check(), m.check_error()
+        return headline_html(result, units, capacity_si, m.monte_carlo_for_current_gap(), m.current_design_gap(), m.case_name(),
+                             check=check, checking=m.checks and check is None and not check_error, check_error=check_error)
 
     def _request_redraw(self, *_events) -> None:
         if not self._redraw_pending:

@@ -1,5 +1,6 @@
 """The served dashboard in headless Chromium, as a user meets it: the page at 1280 x 800, inputs typed in
-engineering terms, new forms of the ground motion, Monte Carlo's verdict, the report, and bad input."""
+engineering terms, new forms of the ground motion, the headline's check against simulated records, Monte Carlo's
+verdict, the report, and bad input."""
 
 from __future__ import annotations
 
@@ -9,13 +10,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pounding import estimate, load_case, simulate
+from pounding import defaults, estimate, load_case, simulate
 from pounding.case.case import case_from_dict
 from pounding.display_units import display
 from pounding.hazard.accelerograms import Accelerogram, write_at2
 from pounding.hazard.excitation import ground_accelerations
 from pounding.presets import preset_text
 from pounding.report import MonteCarloPoint, monte_carlo_check
+from pounding.studies.check import check_estimate
 from tests.browser import CANVAS_COUNT_JS, LOAD_TIMEOUT, UPDATE_TIMEOUT
 
 pytestmark = pytest.mark.browser
@@ -168,6 +170,33 @@ def test_monte_carlo_gives_its_verdict(dashboard):
     case = load_case(DEFAULT)
     study = MonteCarloPoint.from_result(simulate(case, records=12, seed=1))
     _wait_text(dashboard, ".mc-verdict", monte_carlo_check(estimate(case).force_expected, study).text)
+    assert dashboard.errors == []
+
+
+def _agreeing(check) -> str:
+    """The verdict line of a check where the closed form agrees, as the page must read (written out here)."""
+    low, high = check.force_max_confidence_interval
+    return (f"Checked on {check.records} simulated records: {_shown(check.force_max_mean)} (95 % interval {_shown(low)} "
+            f"to {_shown(high)}); the closed form agrees.")
+
+
+def test_the_headline_is_checked_against_simulated_records_and_a_new_gap_gets_its_own_verdict(dashboard):
+    """The verdict comes by itself under the numbers: the library's check of the case on the page's seed; after a
+    new gap, the old verdict goes at once and the new gap's comes."""
+    check = check_estimate(estimate(load_case(DEFAULT)), seed=defaults.REPORT_SEED)
+    assert check.agrees
+    _wait_text(dashboard, ".check-verdict", _agreeing(check), timeout=60_000)
+    verdict, force = dashboard.locator(".check-verdict").bounding_box(), dashboard.locator(".fe-recommended").bounding_box()
+    assert verdict["y"] >= force["y"] + force["height"]  # under the headline's numbers
+    _type(dashboard, "gap [mm]", "20")
+    _wait_text(dashboard, ".check-verdict", "Checking against simulated records\u2026")
+    data = tomllib.loads(preset_text(DEFAULT))
+    data["contact"]["gap"] = 2.0
+    result = estimate(case_from_dict(data))
+    new = check_estimate(result, seed=defaults.REPORT_SEED)
+    assert new.force_max_mean != check.force_max_mean
+    _wait_text(dashboard, ".check-verdict", _agreeing(new), timeout=60_000)
+    _wait_text(dashboard, ".fe-recommended", _shown(result.force_expected))
     assert dashboard.errors == []
 
 
