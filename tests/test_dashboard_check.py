@@ -182,6 +182,11 @@ def test_where_the_closed_form_is_known_to_be_off_the_headlines_force_is_the_rec
             "the force above is the records&#x27; mean")
     assert said in page
     assert 'class="value fe-recommended"' not in page  # the closed form is beside the force, not the force
+    # the fractiles the check stands behind are the records' here: the 84th percentile shown is theirs
+    assert check.quantiles_source == "monte carlo"
+    assert re.search(r'class="value check-f84">([^<]+)<', page).group(1) == shown.force(check.quantiles_answer["0.84"])
+    # beside the verdict, the measured accuracy is stated in full
+    assert result.accuracy.statement(with_verdict=True) in page and result.measured_accuracy not in page
 
 
 def test_a_monte_carlo_study_of_the_gap_before_is_not_offered_beside_the_new_gap():
