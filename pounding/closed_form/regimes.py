@@ -176,7 +176,7 @@ class MeasuredRange:
     where : str
         Where that is, in words ("where pounding is frequent").
     median_abs_error : float
-        The median of |error| there [-].
+        The median of ``|error|`` there [-].
     """
 
     regime: str
