@@ -23,16 +23,13 @@ Run: python3 benchmarks/estimate.py
 
 from __future__ import annotations
 
-import contextlib
-import io
 import json
 import time
 
 import numpy as np
-from timing import median_seconds  # noqa: E402 (this folder is on the path)
+from timing import command_output, median_seconds  # noqa: E402 (this folder is on the path)
 
 from pounding import load_case, simulate
-from pounding.cli.commands import main as command_line
 from pounding.closed_form.estimator import estimate, force_versus_gap
 from pounding.closed_form.linearization import linearize_pair
 from pounding.closed_form.linearization.residual import residual_response
@@ -40,16 +37,6 @@ from pounding.closed_form.pair import LinearizedPair
 
 CLI_CASE = "section5-T2-0.4"
 CLI_TARGET = 5e-3  # [s] median of one in-process `pounding estimate CASE --json`
-
-
-def _command_line_estimate(argv: list[str]) -> str:
-    """``pounding.cli.commands.main(argv)`` with its stdout captured; the printed text."""
-    out = io.StringIO()
-    with contextlib.redirect_stdout(out):
-        status = command_line(argv)
-    if status != 0:
-        raise RuntimeError(f"pounding {' '.join(argv)} exited {status}")
-    return out.getvalue()
 
 
 def _monte_carlo_seconds(case, records: int = 300) -> float:
@@ -98,9 +85,9 @@ def main() -> None:
         print(f"  force_versus_gap from scratch        {1e3 * standalone:7.2f} ms")
 
     argv = ["estimate", CLI_CASE, "--json"]
-    printed = json.loads(_command_line_estimate(argv))  # the warm-up, and a check that it printed one JSON object
+    printed = json.loads(command_output(argv))  # the warm-up, and a check that it printed one JSON object
     assert printed["force_expected"] > 0.0, printed
-    command = median_seconds(lambda: _command_line_estimate(argv), repeats=50)
+    command = median_seconds(lambda: command_output(argv), repeats=50)
     case = load_case(CLI_CASE)
     lin = median_seconds(lambda: linearize_pair(case))
     monte_carlo = _monte_carlo_seconds(case)

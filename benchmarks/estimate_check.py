@@ -16,32 +16,19 @@ Run: python3 benchmarks/estimate_check.py [--repeats 5]
 from __future__ import annotations
 
 import argparse
-import contextlib
-import io
 import json
 import time
 
 import numpy as np
-from timing import median_seconds  # noqa: E402 (this folder is on the path)
+from timing import command_output, median_seconds  # noqa: E402 (this folder is on the path)
 
 from pounding import Settings, load_case, simulate
-from pounding.cli.commands import main as command_line
 from pounding.closed_form.estimator import estimate
 from pounding.closed_form.linearization import linearize_pair
 from pounding.studies.check import check_estimate
 
 CASE = "section5-T2-0.4"
 TARGET_CPU = 1.0  # [s] of one core: estimate --check on CASE, the default count (issue 32)
-
-
-def _command(argv: list[str]) -> str:
-    """``pounding.cli.commands.main(argv)`` with its stdout captured; the printed text."""
-    out = io.StringIO()
-    with contextlib.redirect_stdout(out):
-        status = command_line(argv)
-    if status != 0:
-        raise RuntimeError(f"pounding {' '.join(argv)} exited {status}")
-    return out.getvalue()
 
 
 def _wall_and_cpu(function, repeats: int) -> tuple[float, float]:
@@ -64,12 +51,12 @@ def main() -> None:
 
     plain = ["estimate", CASE, "--json"]
     checked = ["estimate", CASE, "--check", "--json"]
-    json.loads(_command(plain))  # warm-up, and a check that it printed one JSON object
-    printed = json.loads(_command(checked))
+    json.loads(command_output(plain))  # warm-up, and a check that it printed one JSON object
+    printed = json.loads(command_output(checked))
     records = printed["check"]["records"]
-    estimate_seconds = median_seconds(lambda: _command(plain), repeats=50)
+    estimate_seconds = median_seconds(lambda: command_output(plain), repeats=50)
     linearization = median_seconds(lambda: linearize_pair(case))
-    check_wall, check_cpu = _wall_and_cpu(lambda: _command(checked), args.repeats)
+    check_wall, check_cpu = _wall_and_cpu(lambda: command_output(checked), args.repeats)
 
     result = estimate(case)
     one_thread = Settings(workers=1)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import contextlib
+import io
 import time
 
 import numpy as np
@@ -18,3 +20,15 @@ def median_seconds(function, repeats: int = 30, setup=None) -> float:
         function(argument) if setup else function()
         times.append(time.perf_counter() - start)
     return float(np.median(times))
+
+
+def command_output(argv: list[str]) -> str:
+    """``pounding.cli.commands.main(argv)`` in this process, its stdout captured: the printed text."""
+    from pounding.cli.commands import main
+
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        status = main(argv)
+    if status != 0:
+        raise RuntimeError(f"pounding {' '.join(argv)} exited {status}")
+    return out.getvalue()

@@ -121,6 +121,11 @@ def other_loop(case) -> bool:
     return False
 
 
+def _signable(low: float, high: float) -> bool:
+    """Whether a range of errors [-] lies within :data:`SIGNABLE_ERROR` either side."""
+    return -SIGNABLE_ERROR <= low and high <= SIGNABLE_ERROR
+
+
 @lru_cache(maxsize=1)
 def accuracy_data() -> dict:
     """The measured accuracy (``pounding/data/accuracy.json``), read once."""
@@ -202,7 +207,7 @@ class MeasuredRange:
     @property
     def signable(self) -> bool:
         """Whether the range lies within :data:`SIGNABLE_ERROR` either side."""
-        return -SIGNABLE_ERROR <= self.low and self.high <= SIGNABLE_ERROR
+        return _signable(self.low, self.high)
 
     def statement(self, with_verdict: bool = False) -> str:
         """The estimate's one sentence (``Estimate.measured_accuracy``): the range where it is :attr:`signable` or a
@@ -326,7 +331,7 @@ def _bounded_span(entry: dict | MeasuredRange) -> str:
     """:func:`_span` where the range lies within :data:`SIGNABLE_ERROR` either side, else "more than 30 %": a warning
     prints no wider range (the Monte Carlo check gives this case's own error)."""
     low, high = (entry["low"], entry["high"]) if isinstance(entry, dict) else (entry.low, entry.high)
-    return _span(entry) if -SIGNABLE_ERROR <= low and high <= SIGNABLE_ERROR else f"more than {100 * SIGNABLE_ERROR:.0f} %"
+    return _span(entry) if _signable(low, high) else f"more than {100 * SIGNABLE_ERROR:.0f} %"
 
 
 def extreme_warnings(pair, force: float, paper_force: float | None, velocity: float, sigma_x: float) -> tuple[str, ...]:

@@ -233,6 +233,12 @@ def _check(records, cutoff_frequency) -> float:
     return cutoff
 
 
+def _level(bank: FilterBank, duration: float, step: float, cutoff: float, mean_square: float) -> float:
+    """S4: the bank's G0 [m^2/s^3] whose variance below ``cutoff`` on the records' synthesis grid is ``mean_square``."""
+    unit = Excitation(dataclasses.replace(bank, G0=1.0), duration, None, time_step=step, cutoff_frequency=cutoff)
+    return mean_square / unit.represented_variance()
+
+
 def fit_suite_spectrum(records: Sequence[Accelerogram], cutoff_frequency: float, modulated: bool = True) -> SuiteSpectrum:
     """S1-S5: the bank and envelope of ``records`` below ``cutoff_frequency`` [rad/s]. ``modulated=False``
     gives the stationary form: the bank at the strong motion's mean square (R2) over the mean significant
@@ -254,15 +260,13 @@ def fit_suite_spectrum(records: Sequence[Accelerogram], cutoff_frequency: float,
         strong_squares.append(float(np.mean(_interpolated_square(values))))
     if not modulated:
         duration = float(np.mean(durations))
-        unit = Excitation(dataclasses.replace(bank, G0=1.0), duration, None, time_step=step, cutoff_frequency=high)
-        level = float(np.mean(strong_squares)) / unit.represented_variance()
+        level = _level(bank, duration, step, high, float(np.mean(strong_squares)))
         return SuiteSpectrum(dataclasses.replace(bank, G0=level), None, duration, high, cutoff, step, omega, mean, misfit)
     times, square = mean_square_history(records, onsets)
     end = max(int(np.flatnonzero(square > 0.0)[-1]), math.ceil(10 * step / ENVELOPE_STEP))  # at least 10 time steps
     times, square = times[: end + 1], square[: end + 1]
     envelope = TabulatedEnvelope(tuple(times), tuple(np.sqrt(square / square.max())))
     duration = float(times[-1])
-    unit = Excitation(dataclasses.replace(bank, G0=1.0), duration, None, time_step=step, cutoff_frequency=high)
-    level = float(square.max()) / unit.represented_variance()  # S4
+    level = _level(bank, duration, step, high, float(square.max()))  # S4
     return SuiteSpectrum(dataclasses.replace(bank, G0=level), envelope, duration, high, cutoff, step, omega, mean, misfit,
                          float(square.max()) / float(np.mean(strong_squares)))
