@@ -76,7 +76,9 @@ class PoundingDashboard(pn.viewable.Viewer):
             schedule = (lambda fn: doc.add_next_tick_callback(fn)) if doc else None
             batch = (lambda: pn.io.hold(doc)) if doc else None
             submit = shared_pool().submit if doc and not compute_inline else None
-            params["model"] = PoundingModel(schedule=schedule, batch=batch, submit=submit, check=True)
+            # the automatic check needs a live session to bring its verdict to: without one (a notebook executed and
+            # exported), a verdict landing mid-export made the static page differ from run to run
+            params["model"] = PoundingModel(schedule=schedule, batch=batch, submit=submit, check=doc is not None)
         super().__init__(**params)
         self._delay = (lambda fn: doc.add_timeout_callback(fn, REDRAW_DELAY_MS)) if doc else (lambda fn: fn())
         self._batch = (lambda: pn.io.hold(doc)) if doc else contextlib.nullcontext
