@@ -128,3 +128,49 @@ def test_a_yield_drift_to_a_power_beyond_the_numbers_is_refused_naming_it(drift,
         BoucWen.from_yield_drift(drift, 0.05, n, 0.5)
     law = BoucWen.from_yield_drift(0.5, 0.05, n, 0.5)
     assert law.yield_displacement == pytest.approx(0.5, rel=1e-12)
+
+
+def test_an_elastic_perfectly_plastic_storey_is_refused_by_the_closed_form_and_simulated():
+    """post_yield_ratio = 0 leaves the linearized storey without a restoring force on its drift (a zero eigenvalue):
+    no stationary response exists, so the closed form must refuse, naming the storey, instead of a number; the
+    time histories have no such limit and pound."""
+    from pounding.errors import ConvergenceError
+
+    case = case_from_dict(_with_hysteresis({"yield_drift": 1.0, "post_yield_ratio": 0.0}))
+    with pytest.raises(ConvergenceError, match=r"building 1, storey 1 is elastic-perfectly plastic") as caught:
+        estimate(case)
+    assert len(str(caught.value)) <= 200
+    result = simulate(case, records=4, seed=1)
+    assert result.force_max_mean > 0 and math.isfinite(result.force_max_mean)
+    # A small post-yield ratio has a stationary response again: the refusal is for alpha = 0 only.
+    assert estimate(case_from_dict(_with_hysteresis({"yield_drift": 1.0, "post_yield_ratio": 0.02}))).force_expected > 0
+
+
+def test_the_accuracy_grid_covers_the_storeys_engineers_give():
+    """Issue 32's grid: every loop share (0.5, 1, 2), n (1, 2), each yield level meeting each post-yield ratio,
+    post-yield 0 and elastic storeys, under Kanai-Tajimi, Clough-Penzien and a design spectrum's bank, frequent
+    and rare pounding."""
+    from pounding.hazard.excitation import CloughPenzien
+    from pounding.hazard.filter_bank import FilterBank
+    from pounding.studies.storey_grid import engineer_storey_cases
+
+    cases = engineer_storey_cases()
+    laws = {}
+    for case in cases:
+        law = case.buildings[0].storeys[0].bouc_wen
+        spectrum = case.excitation.spectrum
+        kind = "cp" if isinstance(spectrum, CloughPenzien) else ("bank" if isinstance(spectrum, FilterBank) else "kt")
+        laws.setdefault(kind, []).append((law, case))
+    assert set(laws) == {"kt", "cp", "bank"}
+    for kind, entries in laws.items():
+        yielding = [law for law, _ in entries if law.alpha < 1.0]
+        shares = {round(law.beta / (law.beta + law.gamma), 6) for law in yielding}
+        assert shares == {0.5, 1.0, 2.0}, kind
+        assert {law.n for law in yielding} == {1.0, 2.0}
+        assert {law.alpha for law in yielding} == {0.0, 0.02, 0.1, 0.2}
+        assert any(law.alpha == 1.0 for law, _ in entries)
+        # each yield level (drift = 1 / (beta + gamma)^(1/n)) with each positive post-yield ratio
+        drifts = {(round((law.beta + law.gamma) ** (-1.0 / law.n), 9), law.alpha) for law in yielding if law.alpha > 0}
+        assert len({d for d, _ in drifts}) == 3 and len(drifts) == 9, kind
+        gaps = {round(case.contact.gap, 12) for _, case in entries}
+        assert len(gaps) == 2

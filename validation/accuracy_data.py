@@ -27,12 +27,16 @@ import argparse
 import datetime
 import json
 import subprocess
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from pounding.closed_form.pair import LinearizedPair
-from pounding.studies.paper_tables import accuracy_cases, random_cases
+from pounding.closed_form.regimes import other_loop
+from pounding.hazard.excitation import CloughPenzien
+from pounding.studies.paper_tables import AccuracyRow, accuracy, accuracy_cases, random_cases
+from pounding.studies.storey_grid import engineer_storey_cases
 
 from .out_of_sample import GAP_SEED, LABELS, measured, required_gaps
 from .record_synthesis import (
@@ -50,6 +54,7 @@ from .storey_accuracy import rows as storey_rows
 
 ROOT = Path(__file__).resolve().parent.parent
 DEFAULT_OUTPUT = ROOT / "pounding" / "data" / "accuracy.json"
+DEFAULT_LISTING = ROOT / "docs" / "accuracy-cases.md"
 SEEDS = (2026, 2027, 2028, 2029)
 RECORDS, SEED = 300, 11  # the Kanai-Tajimi force's Monte Carlo
 GAP_RECORDS = 400  # the required gap's, seed GAP_SEED
@@ -86,28 +91,76 @@ def gap_entry(fractions) -> dict:
     return {"pairs": int(fractions.size), "mean": round(float(fractions.mean()), 3), "max": round(float(fractions.max()), 4)}
 
 
-def kanai_tajimi_force(seeds, cases: int | None, records: int) -> dict:
-    """The grid's and the draws' errors by regime (the first ``cases`` of each, all for None)."""
-    rows = measured(first(accuracy_cases(), cases), records, SEED)
+@dataclass(frozen=True)
+class GridCase:
+    """One case of the grid (the paper's storeys, or the engineer's), as docs/accuracy-cases.md lists it."""
+
+    source: str
+    table: str
+    """The row of accuracy.json's ``force`` it counts in (:func:`force_table`)."""
+    label: str
+    """Its regime's label in that table; "refused" where the closed form has no answer."""
+    row: AccuracyRow
+
+
+def force_table(case) -> str:
+    """accuracy.json's ``force`` table a case counts in, as the estimate reads it (``regimes.measured_range``):
+    "other loops" for a yielding storey outside the grid's loops, else its spectrum's."""
+    yielding = any(storey.bouc_wen.alpha < 1.0 for building in case.buildings for storey in building.storeys)
+    if yielding and other_loop(case):
+        return "other loops"
+    return "clough-penzien" if isinstance(case.excitation.spectrum, CloughPenzien) else "kanai-tajimi"
+
+
+def _table_label(table: str, case, row: AccuracyRow) -> str:
+    if row.refused:
+        return "refused"
+    yielding = any(storey.bouc_wen.alpha < 1.0 for building in case.buildings for storey in building.storeys)
+    if row.accuracy_regime == "rare":
+        return "rare, yielding" if yielding else "rare, elastic"
+    return "gap below sigma_X" if table == "clough-penzien" else row.accuracy_regime
+
+
+def grid(cases: int | None, records: int) -> list[GridCase]:
+    """The grid of ``pounding validate --grid`` (the first ``cases`` of each part, all for None) against Monte
+    Carlo: the paper's storeys and :func:`~pounding.studies.storey_grid.engineer_storey_cases`."""
+    out = []
+    for source, chosen in (("paper's storeys", first(accuracy_cases(), cases)),
+                           ("engineer's storeys", first(engineer_storey_cases(), cases))):
+        for case, row in zip(chosen, accuracy(chosen, records=records, seed=SEED)):
+            table = force_table(case)
+            out.append(GridCase(source, table, _table_label(table, case, row), row))
+    return out
+
+
+def _counted(grid_cases, table: str) -> list[tuple[str, float]]:
+    """(label, error) of the grid's cases counted in ``table`` (with a relative error)."""
+    return [(c.label, c.row.recommended_error) for c in grid_cases if c.table == table and c.row.recommended_error is not None]
+
+
+def kanai_tajimi_force(seeds, cases: int | None, records: int, grid_cases) -> dict:
+    """The grid's and the draws' errors by regime (the first ``cases`` of each draw, all for None)."""
+    rows = _counted(grid_cases, "kanai-tajimi")
     for seed in seeds:
-        rows += measured(first(random_cases(seed), cases), records, SEED)
-    return {label: force_entry([e for regime, _, e in rows if regime == label]) for label in LABELS}
+        rows += [(regime, e) for regime, _, e in measured(first(random_cases(seed), cases), records, SEED)]
+    return {label: force_entry([e for regime, e in rows if regime == label]) for label in LABELS}
 
 
-def clough_penzien_force(cases: int | None, records: int) -> dict:
-    """:mod:`validation.record_synthesis`'s Clough-Penzien cases: below sigma_X, or rare by yielding."""
-    rows = measured(first(clough_penzien_cases(), cases), records, SEED)
-    labels = [regime if regime.startswith("rare") else "gap below sigma_X" for regime, _, _ in rows]
-    return {label: force_entry([e for (_, _, e), other in zip(rows, labels) if other == label]) for label in CLOUGH_PENZIEN_LABELS}
+def clough_penzien_force(cases: int | None, records: int, grid_cases) -> dict:
+    """:mod:`validation.record_synthesis`'s Clough-Penzien cases and the grid's: below sigma_X, or rare by yielding."""
+    rows = [(regime if regime.startswith("rare") else "gap below sigma_X", e)
+            for regime, _, e in measured(first(clough_penzien_cases(), cases), records, SEED)]
+    rows += _counted(grid_cases, "clough-penzien")
+    return {label: force_entry([e for regime, e in rows if regime == label]) for label in CLOUGH_PENZIEN_LABELS}
 
 
-def other_loops_force(cases: int | None, records: int, table: list[dict] | None = None) -> dict:
-    """:mod:`validation.storey_accuracy`'s draws whose loop lies outside the grid's (beta_share below
-    ``regimes.GRID_LOOP_SHARE``), under any of its spectra: the gap below sigma_X, or rare pounding (``table``: rows
-    already measured, else the first ``cases`` draws, all for None)."""
+def other_loops_force(cases: int | None, records: int, grid_cases, table: list[dict] | None = None) -> dict:
+    """Yielding storeys whose loop lies outside the paper's (beta_share below ``regimes.GRID_LOOP_SHARE``), under
+    any spectrum, by regime: the grid's engineer's storeys and :mod:`validation.storey_accuracy`'s draws (``table``:
+    rows already measured, else the first ``cases`` draws, all for None)."""
     table = storey_rows(count=STOREY_CASES if cases is None else cases, records=records) if table is None else table
-    errors = other_loop_errors(table)
-    return {label: force_entry(errors[label]) for label in ("gap below sigma_X", "rare")}
+    rows = _counted(grid_cases, "other loops") + other_loop_errors(table)
+    return {label: force_entry([e for regime, e in rows if regime == label]) for label in LABELS}
 
 
 def required_gap(seeds, cases: int | None, gap_records: int, design_records: int) -> dict:
@@ -138,13 +191,18 @@ def git_commit() -> str:
 
 
 def accuracy_document(seeds=SEEDS, cases: int | None = None, records: int = RECORDS, gap_records: int = GAP_RECORDS,
-                      clough_penzien_records: int = CLOUGH_PENZIEN_RECORDS, design_records: int = DESIGN_RECORDS) -> dict:
-    """The data file's content from a run over the first ``cases`` of every source (all for None)."""
+                      clough_penzien_records: int = CLOUGH_PENZIEN_RECORDS, design_records: int = DESIGN_RECORDS,
+                      grid_cases: list[GridCase] | None = None) -> dict:
+    """The data file's content from a run over the first ``cases`` of every source (all for None); ``grid_cases``:
+    :func:`grid` already measured."""
     seeds = [int(seed) for seed in seeds]
+    grid_cases = grid(cases, records) if grid_cases is None else grid_cases
+    paper, engineer = (sum(c.source == source for c in grid_cases) for source in ("paper's storeys", "engineer's storeys"))
     commit = git_commit()
     draws = ", ".join(str(seed) for seed in seeds)
     size = "" if cases is None else f", reduced to the first {cases} cases of each source"
-    grid = f"the {len(accuracy_cases())}-case grid of `pounding validate --grid`" if cases is None else "the grid of `pounding validate --grid`"
+    grid_text = (f"the grid of `pounding validate --grid` ({paper} cases of the paper's storeys, {engineer} of storeys given "
+                 f"the engineer's way, listed in docs/accuracy-cases.md)")
     count = {1: "one random draw", 2: "two random draws", 3: "three random draws", 4: "four random draws"}.get(len(seeds), f"{len(seeds)} random draws")
     count += f" of {len(random_cases(seeds[0]))} cases" if cases is None and seeds else ""
     return {
@@ -154,18 +212,19 @@ def accuracy_document(seeds=SEEDS, cases: int | None = None, records: int = RECO
                        f"Clough-Penzien cases; draws {draws}{size})"),
         "commit": commit,
         "monte_carlo": {"records": records, "seed": SEED},
-        "cases": (f"{grid} and {count} (pounding.studies.paper_tables.random_cases, seeds {draws}){size}; "
+        "cases": (f"{grid_text} and {count} (pounding.studies.paper_tables.random_cases, seeds {draws}){size}; "
                   f"the gap for 95 %: the same draws, {gap_records} records of the free motion, seed {GAP_SEED}; "
                   f"Clough-Penzien: validation/record_synthesis.py ({clough_penzien_records} records, seed {SEED}; "
                   f"at the gap for 95 %: {design_records} records, seed {DESIGN_SEED})"),
         "force": {
-            "kanai-tajimi": kanai_tajimi_force(seeds, cases, records),
-            "clough-penzien": clough_penzien_force(cases, clough_penzien_records),
-            "other loops": other_loops_force(cases, records),
+            "kanai-tajimi": kanai_tajimi_force(seeds, cases, records, grid_cases),
+            "clough-penzien": clough_penzien_force(cases, clough_penzien_records, grid_cases),
+            "other loops": other_loops_force(cases, records, grid_cases),
         },
         "other_loops": {"about": (f"force['other loops']: yielding storeys with beta_share below 1.5 (Wen's symmetric 0.5 "
-                                  f"and 1) from validation/storey_accuracy.py's draws ({'all' if cases is None else cases} "
-                                  f"of seed 3201, {records} records a case, seed {SEED}) at commit {commit}, under "
+                                  f"and 1), by regime: the grid's storeys given the engineer's way and "
+                                  f"validation/storey_accuracy.py's draws ({'all' if cases is None else cases} of seed "
+                                  f"3201), {records} records a case, seed {SEED}, at commit {commit}, under "
                                   "Kanai-Tajimi, Clough-Penzien and design-spectrum banks")},
         "required_gap": required_gap(seeds, cases, gap_records, design_records),
         "extreme_inputs": json.loads(DEFAULT_OUTPUT.read_text())["extreme_inputs"],  # measured by hand, kept
@@ -190,6 +249,27 @@ def summary(document: dict) -> None:
             print(f"| {kind} | {entry['pairs']} | {cells[0]} | {cells[1]} |")
 
 
+def cases_listing(grid_cases: list[GridCase], document: dict) -> str:
+    """docs/accuracy-cases.md: every case of the grid with its Monte Carlo mean, the estimate and its error."""
+    lines = ["# The accuracy grid, case by case", "",
+             f"Written by `python3 -m validation.accuracy_data` ({document['written_by'].split(' (')[0].split(' on ', 1)[1]}); "
+             f"Monte Carlo: {document['monte_carlo']['records']} records a case, seed {document['monte_carlo']['seed']}. "
+             "The error is estimate / Monte Carlo - 1; \"table\" is the row of the measured accuracy "
+             "([accuracy.md](accuracy.md)) the case counts in, \"n/a\" where no record pounded. `pounding validate --grid` "
+             "prints the same table.", ""]
+    for source in ("paper's storeys", "engineer's storeys"):
+        lines += [f"## The {source}", "", "| case | table | regime | Monte Carlo E[F_max] (kN) | s.e. | estimate (kN) | error |",
+                  "|---|---|---|---|---|---|---|"]
+        for c in (c for c in grid_cases if c.source == source):
+            row = c.row
+            se = "-" if row.monte_carlo == 0.0 else f"{100 * row.monte_carlo_std_error / row.monte_carlo:.1f} %"
+            estimate = "refused" if row.recommended is None else f"{row.recommended / 1e3:.1f}"
+            error = "-" if row.recommended is None else ("n/a" if row.recommended_error is None else f"{100 * row.recommended_error:+.1f} %")
+            lines.append(f"| {row.case} | {c.table} | {c.label} | {row.monte_carlo / 1e3:.1f} | {se} | {estimate} | {error} |")
+        lines.append("")
+    return "\n".join(lines)
+
+
 def main(output=DEFAULT_OUTPUT, seeds=SEEDS, cases: int | None = None, records: int = RECORDS, gap_records: int = GAP_RECORDS,
          clough_penzien_records: int = CLOUGH_PENZIEN_RECORDS, design_records: int = DESIGN_RECORDS) -> dict:
     """Measure (the first ``cases`` of every source, all for None), write ``output`` and print the tables.
@@ -198,12 +278,15 @@ def main(output=DEFAULT_OUTPUT, seeds=SEEDS, cases: int | None = None, records: 
     reduced = cases is not None or any(size < full for size, full in zip(sizes, (RECORDS, GAP_RECORDS, CLOUGH_PENZIEN_RECORDS, DESIGN_RECORDS)))
     if reduced and Path(output).resolve() == DEFAULT_OUTPUT:
         raise ValueError(f"a reduced run is not written to {DEFAULT_OUTPUT}: give another output")
-    document = accuracy_document(seeds, cases, records, gap_records, clough_penzien_records, design_records)
+    grid_cases = grid(cases, records)
+    document = accuracy_document(seeds, cases, records, gap_records, clough_penzien_records, design_records, grid_cases)
     output = Path(output)
     output.parent.mkdir(parents=True, exist_ok=True)
     output.write_text(json.dumps(document, indent=2, ensure_ascii=False) + "\n")
+    listing = DEFAULT_LISTING if output.resolve() == DEFAULT_OUTPUT else output.with_name("accuracy-cases.md")
+    listing.write_text(cases_listing(grid_cases, document) + "\n")
     summary(document)
-    print(f"\nwrote {output}")
+    print(f"\nwrote {output} and {listing}")
     return document
 
 

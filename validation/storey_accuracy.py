@@ -116,14 +116,12 @@ def rows(seed: int = SEED, count: int = CASES, records: int = RECORDS) -> list[d
     return out
 
 
-def other_loop_errors(table: list[dict]) -> dict:
-    """The errors of the yielding draws whose loop lies outside the grid's (beta_share below
-    ``regimes.GRID_LOOP_SHARE``): {"gap below sigma_X": [...], "rare": [...]} (accuracy.json's "other loops")."""
-    errors: dict = {"gap below sigma_X": [], "rare": []}
-    for row in table:
-        if row["error"] is not None and row["share"] is not None and row["share"] < GRID_LOOP_SHARE:
-            errors["rare" if row["regime"] == "rare" else "gap below sigma_X"].append(row["error"])
-    return errors
+def other_loop_errors(table: list[dict]) -> list[tuple[str, float]]:
+    """(label, error) of the yielding draws whose loop lies outside the grid's (beta_share below
+    ``regimes.GRID_LOOP_SHARE``), labelled by the estimate's regime, rare pounding as "rare, yielding"
+    (accuracy.json's "other loops")."""
+    return [("rare, yielding" if row["regime"] == "rare" else row["regime"], row["error"]) for row in table
+            if row["error"] is not None and row["share"] is not None and row["share"] < GRID_LOOP_SHARE]
 
 
 def _kind(row) -> str:

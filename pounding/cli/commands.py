@@ -246,8 +246,9 @@ def _check(case, result, args):
 
 def _accuracy(args) -> int:
     from pounding.studies.paper_tables import accuracy, accuracy_cases
+    from pounding.studies.storey_grid import engineer_storey_cases
 
-    cases = accuracy_cases()
+    cases = accuracy_cases() + engineer_storey_cases()
     with progress_bar(len(cases), unit="case") as progress:
         rows = accuracy(cases, records=args.records, seed=args.seed, progress=progress)
     if args.json:
@@ -263,11 +264,17 @@ def _accuracy(args) -> int:
     print("|---|---|---|---|---|---|---|---|---|")
     for row in rows:
         relative = "n/a" if row.monte_carlo == 0.0 else f"{100 * row.monte_carlo_std_error / row.monte_carlo:.1f} %"
+        if row.refused:
+            print(f"| {row.case} | refused | - | {row.monte_carlo / 1e3:.1f} | {relative} | - | - | {row.pounding_fraction:.3f} | - |")
+            continue
         print(f"| {row.case} | {row.accuracy_regime} | {row.gap_over_sigma:.2f} | {row.monte_carlo / 1e3:.1f} | {relative} | "
               f"{percent(row.recommended_error)} | {percent(row.paper_error)} | {row.pounding_fraction:.3f} | {row.pounding_probability:.3f} |")
     unpounded = sum(row.monte_carlo == 0.0 for row in rows)
     if unpounded:
         print(f"\nno record pounded in {unpounded} case(s): no relative error there (n/a); more records would tell")
+    refused = [row for row in rows if row.refused]
+    if refused:
+        print(f"\nthe closed form refused {len(refused)} case(s), saying why (not counted): {refused[0].refused}")
     for label, errors in (("recommended", [r.recommended_error for r in rows]), ("paper", [r.paper_error for r in rows])):
         magnitudes = sorted(abs(e) for e in errors if e is not None)
         if not magnitudes:

@@ -107,8 +107,9 @@ dashboard) the range is printed in full."""
 GRID_LOOP_SHARE = 1.5
 """The smallest loop shape beta_share = beta / (beta + gamma) [-] of the accuracy grid's yielding storeys (Section 6's
 beta = -3 gamma; Section 5's is 2). A yielding storey below it (Wen's symmetric 0.5, the default of a storey given by
-its yield drift, or 1) takes its measured accuracy from the storey draws (accuracy.json's "other loops",
-validation/storey_accuracy.py), not from the grid."""
+its yield drift, or 1) takes its measured accuracy from the cases of such storeys (accuracy.json's "other loops": the
+grid's storeys given the engineer's way, pounding.studies.storey_grid, and validation/storey_accuracy.py's draws).
+The value is the grid's own: no Monte Carlo result chose it."""
 
 
 def other_loop(case) -> bool:
@@ -155,12 +156,16 @@ class Assessment:
 
 
 def _force_entry(spectrum: str, regime: str, yielding: bool) -> dict:
-    if spectrum == "other loops":
-        return accuracy_data()["force"][spectrum]["rare" if regime == "rare" else "gap below sigma_X"]
+    """accuracy.json's ``force`` entry of a table (``spectrum``) and regime; where the "other loops" table has no
+    case of that regime, the Kanai-Tajimi one."""
     table = accuracy_data()["force"][spectrum]
     if regime == "rare":
-        return table["rare, yielding" if yielding else "rare, elastic"]
-    return table["gap below sigma_X"] if spectrum == "clough-penzien" else table[regime]
+        entry = table["rare, yielding" if yielding else "rare, elastic"]
+    else:
+        entry = table["gap below sigma_X"] if spectrum == "clough-penzien" else table[regime]
+    if spectrum == "other loops" and not entry["cases"]:
+        return _force_entry("kanai-tajimi", regime, yielding)
+    return entry
 
 
 @dataclass(frozen=True)
@@ -244,8 +249,8 @@ def measured_range(pair, gap: float | None = None, sigma_x: float | None = None)
     spectrum = _force_table(pair)
     regime = accuracy_regime(gap, sigma_x, pair.residual_share, pair.bandwidth)
     entry = _force_entry(spectrum, regime, pair.yielding)
-    if spectrum == "other loops":  # measured on the storey draws: rare pounding or not, under any spectrum
-        where = (_WHERE["rare"] if regime == "rare" else "where the gap is below sigma_X") + ", on storey loops like these"
+    if spectrum == "other loops":  # measured on the storeys given the engineer's way, under any spectrum
+        where = _WHERE[regime] + ", on storey loops like these"
     else:
         where = _WHERE[regime] + (" under a Clough-Penzien spectrum" if spectrum == "clough-penzien" else "")
     return MeasuredRange(regime, float(entry["low"]), float(entry["high"]), int(entry["cases"]),

@@ -19,6 +19,7 @@ import numpy as np
 from pounding import defaults
 from pounding.case.case import Case, load_case
 from pounding.closed_form.estimator import estimate
+from pounding.errors import ConvergenceError
 from pounding.mechanics.structures import BoucWen, Building, Storey
 from pounding.simulation.monte_carlo import simulate
 
@@ -260,20 +261,22 @@ class AccuracyRow:
     """Monte Carlo against both estimators on one case; forces [N]."""
 
     case: str
-    gap_over_sigma: float
+    gap_over_sigma: float | None
     monte_carlo: float
     monte_carlo_std_error: float
-    recommended: float
+    recommended: float | None
     paper: float | None
     pounding_fraction: float
-    pounding_probability: float
+    pounding_probability: float | None
     accuracy_regime: str
-    """The estimate's own (:func:`pounding.closed_form.regimes.accuracy_regime`)."""
+    """The estimate's own (:func:`pounding.closed_form.regimes.accuracy_regime`), or "refused"."""
+    refused: str | None = None
+    """Why the closed form has no answer (then the estimates, gap / sigma_X and probability are None)."""
 
     @property
     def recommended_error(self) -> float | None:
-        """estimate / Monte Carlo - 1; None where no record pounded (no relative error)."""
-        return None if self.monte_carlo == 0.0 else self.recommended / self.monte_carlo - 1.0
+        """estimate / Monte Carlo - 1; None where no record pounded (no relative error) or the closed form refused."""
+        return None if self.recommended is None or self.monte_carlo == 0.0 else self.recommended / self.monte_carlo - 1.0
 
     @property
     def paper_error(self) -> float | None:
@@ -285,25 +288,32 @@ def accuracy(
     cases: list[Case] | None = None, records: int = defaults.VALIDATION_RECORDS, seed: int = defaults.ACCURACY_SEED, progress: Callable[[int, int], None] | None = None
 ) -> list[AccuracyRow]:
     """Both estimators against this project's Monte Carlo on ``cases``
-    (default :func:`accuracy_cases`)."""
+    (default :func:`accuracy_cases`); a case the closed form refuses (:class:`ConvergenceError`) is a row
+    with its reason in ``refused``."""
     cases = accuracy_cases() if cases is None else cases
     rows = []
     for done, case in enumerate(cases, start=1):
-        result = simulate(case, records=records, seed=seed)
-        closed_form = estimate(case)
-        rows.append(
-            AccuracyRow(
-                case=case.name,
-                gap_over_sigma=case.contact.gap / closed_form.sigma_relative_displacement,
-                monte_carlo=result.force_max_mean,
-                monte_carlo_std_error=result.force_max_std_error,
-                recommended=closed_form.force_expected,
-                paper=closed_form.paper.force_expected,
-                pounding_fraction=result.pounding_fraction,
-                pounding_probability=closed_form.pounding_probability,
-                accuracy_regime=closed_form.accuracy_regime,
-            )
-        )
+        rows.append(_accuracy_row(case, simulate(case, records=records, seed=seed)))
         if progress is not None:
             progress(done, len(cases))
     return rows
+
+
+def _accuracy_row(case: Case, result) -> AccuracyRow:
+    """One case's row from its Monte Carlo ``result``; the reason where the closed form refuses it."""
+    try:
+        closed_form = estimate(case)
+    except ConvergenceError as error:  # no answer (an elastic-perfectly plastic storey): said, not counted
+        return AccuracyRow(case.name, None, result.force_max_mean, result.force_max_std_error, None, None,
+                           result.pounding_fraction, None, "refused", refused=str(error))
+    return AccuracyRow(
+        case=case.name,
+        gap_over_sigma=case.contact.gap / closed_form.sigma_relative_displacement,
+        monte_carlo=result.force_max_mean,
+        monte_carlo_std_error=result.force_max_std_error,
+        recommended=closed_form.force_expected,
+        paper=closed_form.paper.force_expected,
+        pounding_fraction=result.pounding_fraction,
+        pounding_probability=closed_form.pounding_probability,
+        accuracy_regime=closed_form.accuracy_regime,
+    )

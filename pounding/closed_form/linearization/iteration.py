@@ -151,7 +151,8 @@ def linearize(
         If the iteration does not converge or the linear system loses
         stability; the message names the building, the storey, and the last
         iterate. Also for an undamped building without a yielding storey,
-        which has no stationary response.
+        which has no stationary response, and for an elastic-perfectly plastic storey (alpha = 0), which
+        drifts without bound.
     """
     if not 0.0 < relaxation <= 1.0:
         raise ValueError(f"relaxation must lie in (0, 1], got {relaxation!r}")
@@ -164,6 +165,15 @@ def linearize(
     if spectrum.G0 == 0.0 or not yielding.any():
         # No motion, or no hysteresis: the elastic system is exact.
         return elastic
+    plastic = [i for i, storey in enumerate(storeys) if storey.bouc_wen.alpha == 0.0]
+    if plastic:
+        # alpha = 0: the storey force k z no longer holds the drift u itself, which the linearized storey
+        # then integrates without bound (a zero eigenvalue): there is no stationary response to linearize.
+        error = ConvergenceError(f"{label}, storey {plastic[0] + 1} is elastic-perfectly plastic (post-yield ratio 0): "
+                                 "it drifts without bound, so the closed form has no answer. Give a post-yield "
+                                 "ratio > 0, or use `pounding simulate`.")
+        error.building, error.storey = label, plastic[0] + 1
+        raise error
     index = np.flatnonzero(yielding)
     laws = [storeys[i].bouc_wen for i in index]
     constants = [tuple(float(c) for c in wen_constants(law.n)) for law in laws]
