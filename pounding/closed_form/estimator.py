@@ -20,7 +20,7 @@ import numpy as np
 from pounding import defaults
 from pounding.case.case import Case, as_case
 from pounding.case.engineering import engineering_terms
-from pounding.closed_form.force_distribution import ForceDistribution, force_distribution
+from pounding.closed_form.force_distribution import ForceDistribution, force_distribution, gap_for_capacity
 from pounding.closed_form.gap_aware import (
     Crossings,
     expected_force_maximum,
@@ -149,6 +149,14 @@ class Estimate:
     def probability_exceeding(self, capacity: float) -> float:
         """P(F_max > capacity) [-] for a capacity [N] > 0 (G31)."""
         return self.force_max_distribution.probability_exceeding(capacity)
+
+    def gap_for_capacity(self, capacity: float) -> float:
+        """The smallest gap [m] at which P(F_max > capacity) stays at or below 1 - ``target_probability``
+        (:func:`~pounding.closed_form.force_distribution.gap_for_capacity`): at most :attr:`required_gap`."""
+        if self.crossings is None:  # buildings that move alike never pound
+            return 0.0
+        return gap_for_capacity(self.crossings, self.case.contact, self.case.reduced_mass, capacity,
+                                self.target_probability, self.required_gap)
 
     def to_dict(self) -> dict:
         """JSON-ready, SI units."""

@@ -22,11 +22,11 @@ import numpy as np
 
 from pounding.closed_form.gap_aware import Crossings, opposing_forces
 from pounding.closed_form.pair import LinearizedPair
-from pounding.errors import ArgumentError, CaseError, check_probability, finite_number
+from pounding.errors import ArgumentError, CaseError, ConvergenceError, check_probability, finite_number
 from pounding.mechanics.contact import impact_peak_force
 from pounding.random_vibration.crossing_kernels import U_MAX
 
-__all__ = ["ForceDistribution", "force_distribution", "force_distribution_of"]
+__all__ = ["ForceDistribution", "force_distribution", "force_distribution_of", "gap_for_capacity"]
 
 POINTS = 121
 """Speeds of the grid on which G31 is tabulated: G19's grid (uniform in v^p), so that :meth:`ForceDistribution.mean` is G19."""
@@ -104,3 +104,38 @@ def force_distribution_of(case) -> ForceDistribution:
     crossings = Crossings.of(pair)
     gap = case.contact.gap
     return force_distribution(crossings, gap, case.contact, case.reduced_mass, crossings.damped(np.array([gap])))
+
+
+SCAN_POINTS = 48
+"""Gaps of the scan that brackets :func:`gap_for_capacity`'s answer before it is bisected: P(F_max > capacity) need
+not fall monotonically with the gap (fewer but faster impacts), so the answer is the last crossing of the scan."""
+
+
+def gap_for_capacity(crossings: Crossings, contact, reduced_mass: float, capacity: float, target_probability: float,
+                     no_pounding_gap: float) -> float:
+    """The smallest gap [m] from which on P(F_max > ``capacity`` [N]) stays at or below 1 - ``target_probability``
+    (G31 at each gap): the gap sized to a force the connection or the slab can take, not to no contact at all.
+    Scanned from 0 to twice ``no_pounding_gap`` [m] (G22's gap for the target, where no impact is that likely)
+    and bisected where the probability last crosses the target; 0 where even touching buildings keep to it."""
+    capacity = finite_number("capacity", capacity, error=ArgumentError)
+    if not capacity > 0:
+        raise ArgumentError("capacity", f"must be > 0 N, got {capacity:g}")
+    limit = 1.0 - check_probability(target_probability, "target_probability")
+
+    def exceeding(gap: float) -> float:
+        distribution = force_distribution(crossings, gap, contact, reduced_mass, crossings.damped(np.array([gap])))
+        return distribution.probability_exceeding(capacity)
+
+    if exceeding(0.0) <= limit:
+        return 0.0
+    gaps = np.linspace(0.0, 2.0 * no_pounding_gap, SCAN_POINTS + 1)[1:]
+    above = np.flatnonzero([exceeding(gap) > limit for gap in gaps])
+    last = int(above[-1]) if above.size else -1
+    if last == gaps.size - 1:
+        raise ConvergenceError(f"P(F_max > {capacity:g} N) stays above {limit:g} up to twice the gap for no pounding "
+                               f"({2.0 * no_pounding_gap:g} m): no gap for this capacity")
+    low, high = (0.0 if last < 0 else float(gaps[last])), float(gaps[last + 1])
+    while high - low > 1e-6 * high:
+        middle = 0.5 * (low + high)
+        low, high = (middle, high) if exceeding(middle) > limit else (low, middle)
+    return high
