@@ -86,3 +86,28 @@ def test_records_for_bound_is_where_the_bound_starts(target):
     enough = design_gap(CASE, target_probability=target, records=fewest, seed=6)
     assert np.isinf(short.upper_bound) and np.isfinite(enough.upper_bound)
     assert enough.upper_bound == enough.peaks.max()  # with the fewest records, only the largest peak bounds it
+
+
+def test_code_checks_state_each_rule_against_the_gap_entered():
+    """EN 1998-1 4.4.2.7(3) and ASCE 7-16 Eq. 12.12-2 take the SRSS of the floors' peaks, the DDC rule their double
+    difference (between |u1 - u2| and u1 + u2 for any correlation); each is met exactly from its required gap on."""
+    import dataclasses
+    import math
+
+    from pounding import estimate, load_case
+
+    case = load_case("section5-T2-0.4")
+    result = estimate(case)
+    u1, u2 = result.separation_rules["peak_displacement"]
+    checks = {check.code: check for check in result.code_checks}
+    assert set(checks) == {"EN 1998-1", "ASCE 7-16", "DDC rule"}
+    assert checks["EN 1998-1"].required_gap == pytest.approx(math.hypot(u1, u2), rel=1e-12)
+    assert checks["ASCE 7-16"].required_gap == pytest.approx(math.hypot(u1, u2), rel=1e-12)
+    assert abs(u1 - u2) <= checks["DDC rule"].required_gap <= u1 + u2
+    assert not any(check.met for check in result.code_checks)  # 1 cm against peaks of 18 cm and 2.5 cm
+    for check in result.code_checks:
+        for factor, met in ((0.999, False), (1.001, True)):
+            wider = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=factor * check.required_gap))
+            assert {c.code: c.met for c in estimate(wider).code_checks}[check.code] is met
+    (entry, *_) = result.to_dict()["code_checks"]
+    assert set(entry) >= {"code", "clause", "required_gap", "met"} and entry["required_gap"] == checks["EN 1998-1"].required_gap

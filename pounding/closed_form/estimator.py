@@ -32,7 +32,7 @@ from pounding.closed_form.pair import LinearizedPair
 from pounding.closed_form.paper_method import PaperEstimate, check_michaelov_n1, paper_estimate
 from pounding.closed_form.regimes import MeasuredRange, assess, extreme_warnings, hazard_warnings
 from pounding.closed_form.response import ContactResponse
-from pounding.closed_form.separation import separation_rules
+from pounding.closed_form.separation import CodeCheck, code_checks, separation_rules
 from pounding.errors import ArgumentError, check_limit, check_probability
 from pounding.mechanics.contact import peak_force_ratio
 
@@ -150,6 +150,11 @@ class Estimate:
         """P(F_max > capacity) [-] for a capacity [N] > 0 (G31)."""
         return self.force_max_distribution.probability_exceeding(capacity)
 
+    @property
+    def code_checks(self) -> tuple[CodeCheck, ...]:
+        """The design codes' separation rules against the case's gap, in the codes' words (:func:`code_checks`)."""
+        return code_checks(self.separation_rules, self.case.contact.gap)
+
     def gap_for_capacity(self, capacity: float) -> float:
         """The smallest gap [m] at which P(F_max > capacity) stays at or below 1 - ``target_probability``
         (:func:`~pounding.closed_form.force_distribution.gap_for_capacity`): at most :attr:`required_gap`."""
@@ -178,6 +183,7 @@ class Estimate:
             "impact_memory": self.impact_memory,
             "impact_dashpot": self.impact_dashpot,
             "separation_rules": dict(self.separation_rules),
+            "code_checks": [check.to_dict() for check in self.code_checks],
             "warnings": list(self.warnings),
             "accuracy_regime": self.accuracy_regime,
             "measured_accuracy": self.measured_accuracy,

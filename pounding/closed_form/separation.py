@@ -8,12 +8,13 @@ above the simulated ones (docs/theory.md)."""
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from pounding.random_vibration.peaks import expected_absolute_peak
 
-__all__ = ["separation_rules"]
+__all__ = ["CodeCheck", "code_checks", "separation_rules"]
 
 
 def separation_rules(pair) -> dict:
@@ -35,3 +36,58 @@ def separation_rules(pair) -> dict:
         "peak_displacement": [float(u1), float(u2)],
         "displacement_correlation": float(correlation),
     }
+
+
+@dataclass(frozen=True)
+class CodeCheck:
+    """A design code's separation rule applied to the gap entered, in the code's words.
+
+    Attributes
+    ----------
+    code, clause : str
+        The code and its clause ("EN 1998-1", "4.4.2.7(3)").
+    required_gap : float
+        The separation the rule asks for [m].
+    met : bool
+        Whether the gap entered is at least ``required_gap``.
+    rule : str
+        What the rule combines, in words.
+    assumption : str
+        What this tool puts in place of the code's own displacements.
+    """
+
+    code: str
+    clause: str
+    required_gap: float
+    met: bool
+    rule: str
+    assumption: str
+
+    def to_dict(self) -> dict:
+        """JSON-ready, SI units (``required_gap`` in m)."""
+        return {"code": self.code, "clause": self.clause, "required_gap": self.required_gap, "met": self.met,
+                "rule": self.rule, "assumption": self.assumption}
+
+
+_PEAKS = ("the peak displacements are the closed form's expected peaks of each contact floor (its linearized "
+          "inelastic response to the case's motion, from rest)")
+
+
+def code_checks(rules: dict, gap: float) -> tuple[CodeCheck, ...]:
+    """The separation rules of EN 1998-1 4.4.2.7(3), ASCE 7-16 12.12.3 (Eq. 12.12-2) and the DDC rule against the
+    ``gap`` entered [m], from :func:`separation_rules`' peaks (``rules``). The codes' displacements are design
+    values (EN 1998-1 4.3.4: d_s = q_d d_e; ASCE 7-16 Eq. 12.12-1: delta_M = C_d delta_max / I_e); here the
+    expected peaks of the inelastic response take their place, which is what those formulas approximate."""
+    srss, ddc = rules["srss"], rules["ddc"]
+    return (
+        CodeCheck("EN 1998-1", "4.4.2.7(3)", srss, gap >= srss,
+                  "square root of the sum of the squares (SRSS) of the two buildings' peak displacements at the "
+                  "level of contact", _PEAKS + " in place of d_s = q_d d_e (4.3.4); 4.4.2.7(4)'s factor 0.7 for "
+                  "floors at equal heights is not applied"),
+        CodeCheck("ASCE 7-16", "12.12.3 (Eq. 12.12-2)", srss, gap >= srss,
+                  "delta_MT = sqrt(delta_M1^2 + delta_M2^2), the buildings' maximum inelastic displacements",
+                  _PEAKS + " in place of delta_M = C_d delta_max / I_e (Eq. 12.12-1)"),
+        CodeCheck("DDC rule", "Jeng et al. (1992), Penzien (1997)", ddc, gap >= ddc,
+                  "double difference combination: sqrt(u1^2 + u2^2 - 2 rho u1 u2), rho the floors' correlation",
+                  _PEAKS + f"; rho = {rules['displacement_correlation']:.2f} from the linearized pair"),
+    )
