@@ -4,12 +4,18 @@ pounding at the gap given for 95 % no pounding, by kind of pair. The
 estimate reads it (:func:`pounding.closed_form.regimes.accuracy_data`) for the accuracy
 and the warnings it states.
 
-- Kanai-Tajimi force: the grid (``pounding.studies.paper_tables.accuracy_cases``) and
-  the draws ``random_cases(seed)`` for :data:`SEEDS` against Monte Carlo
-  (300 records, seed 11), by the regime each estimate states, rare pounding
-  split by whether a storey yields (:func:`validation.out_of_sample.measured`);
+- the grid of ``pounding validate --grid`` (:func:`grid`: the paper's storeys,
+  ``pounding.studies.paper_tables.accuracy_cases``, and the storeys given the
+  engineer's way, ``pounding.studies.storey_grid``) against Monte Carlo (300
+  records, seed 11), each case counted in the table the estimate reads for it
+  (:func:`force_table`) and listed in docs/accuracy-cases.md;
+- Kanai-Tajimi force: the grid's and the draws ``random_cases(seed)`` for
+  :data:`SEEDS` (300 records, seed 11), by the regime each estimate states, rare
+  pounding split by whether a storey yields (:func:`validation.out_of_sample.measured`);
 - Clough-Penzien force: the cases of :mod:`validation.record_synthesis`
-  (600 records, seed 11), the gap below sigma_X or rare pounding by yielding;
+  (600 records, seed 11) and the grid's, the gap below sigma_X or rare pounding by yielding;
+- other loops (beta_share below 1.5): the grid's and :mod:`validation.storey_accuracy`'s
+  draws, by regime;
 - the gap for 95 %: the draws against 400 records (seed 9) of their free
   motion (:func:`validation.out_of_sample.required_gaps`); the yielding kinds
   are the one-storey pairs, split by whether their floors move together
@@ -17,7 +23,7 @@ and the warnings it states.
   them; Clough-Penzien: :mod:`validation.record_synthesis`'s four pairs,
   1,000 records simulated at the gap (seed 9).
 
-    python3 -m validation.accuracy_data                  # the full run, 10+ min on 2 cores
+    python3 -m validation.accuracy_data                  # the full run, about 25 min on 2 cores
     python3 -m validation.accuracy_data --output /tmp/accuracy.json --cases 2 --records 8 --seeds 2026
 """
 
