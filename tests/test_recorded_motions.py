@@ -222,3 +222,22 @@ def test_the_report_shows_the_periodogram_and_the_fitted_spectrum(suite, tmp_pat
     folder, _ = suite
     text = write_report(tmp_path / "recorded.html", load_case(folder / "case.toml")).read_text()
     assert "mean periodogram and the fitted" in text and "6 recorded motions" in text and "storey 1: yield drift" in text
+
+
+def test_a_recorded_case_states_the_accuracy_measured_on_recorded_suites(suite):
+    """The closed form of a recorded suite was measured against the records themselves (generated suites and FEMA
+    P695's far-field set): a recorded case states that row of its regime, not the Kanai-Tajimi grid's, which was
+    measured on the very process the records now only approximate."""
+    from pounding import estimate
+    from pounding.closed_form.regimes import accuracy_data
+
+    folder, _ = suite
+    recorded = estimate(load_case(folder / "case.toml"))
+    table = accuracy_data()["force"]["recorded suites"]
+    label = "rare, yielding" if recorded.accuracy_regime == "rare" else recorded.accuracy_regime
+    row = table[label]
+    assert row["cases"] > 0, "measured there: not the Kanai-Tajimi row it would fall back to"
+    assert (recorded.accuracy.low, recorded.accuracy.high, recorded.accuracy.cases) == (row["low"], row["high"], row["cases"])
+    assert "recorded suites" in recorded.measured_accuracy
+    synthetic = estimate(load_case(PRESET)).accuracy  # the same buildings under the process: the grid's row
+    assert "recorded suites" not in synthetic.where

