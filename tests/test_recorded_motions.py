@@ -222,3 +222,26 @@ def test_the_report_shows_the_periodogram_and_the_fitted_spectrum(suite, tmp_pat
     folder, _ = suite
     text = write_report(tmp_path / "recorded.html", load_case(folder / "case.toml")).read_text()
     assert "mean periodogram and the fitted" in text and "6 recorded motions" in text and "storey 1: yield drift" in text
+
+
+@pytest.mark.parametrize(("count", "size"), [(3930, 199_000_000), (2_000_000, 100_000)])
+def test_an_at2_file_whose_size_cannot_hold_its_npts_is_refused_from_its_header(tmp_path, count, size):
+    """Issue 33: a 199 MB record with a wrong NPTS was read and parsed whole (18 s, 1.85 GB) before it was refused;
+    the header and the file's size tell it at once, naming the NPTS line."""
+    path = tmp_path / "wrong.AT2"
+    with path.open("wb") as stream:
+        stream.write(f"PEER\nEVENT\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS= {count:7d}, DT= .00500 SEC\n".encode())
+        stream.write(b"  .1234567E-02" * 5 + b"\n")
+        stream.truncate(size)  # the rest sparse: as large on the disk as in the listing, never written
+    with pytest.raises(CaseError) as caught:
+        read_accelerogram(path)
+    assert caught.value.field == f"{path}:4" and f"NPTS = {count}" in caught.value.message
+    assert ("more than" if size > count else "fewer than") in caught.value.message
+
+
+def test_an_at2_file_of_the_size_its_npts_needs_is_read(tmp_path):
+    """The check against the size passes a long record written as the NGA files are (100,000 values, 1.4 MB)."""
+    values = np.random.default_rng(0).normal(0.0, 0.05, 100_000)
+    path = write_at2(tmp_path / "long.AT2", Accelerogram("long", 0.005, values * STANDARD_GRAVITY))
+    assert path.stat().st_size > 65_536
+    assert read_accelerogram(path).acceleration.size == 100_000
