@@ -47,7 +47,9 @@ def _name_and_unit(owner: param.Parameterized, name: str, units: str) -> tuple[s
     number = getattr(owner, "number", None)
     if number is not None and isinstance(getattr(type(owner), "number", None), int):
         words = f"building {number}'s {words}"
-    words = words[0].upper() + words[1:]
+    first = words.split(" ", 1)[0]
+    if first.isalpha() and first.islower():  # 'gap' -> 'Gap'; a symbol ('omega_g', 'xi_g') as the page writes it
+        words = words[0].upper() + words[1:]
     return words, unit, size
 
 
