@@ -107,6 +107,7 @@ class PoundingModel(CaseInputs, Studies):
         self._preset_values: dict = {}
         self._records_folder: Path | None = None
         self._case_label = ""  # an uploaded case file's name (stem), while its case is shown
+        self.case_file_name = ""  # that file's name as uploaded ('my-house.toml'), or ''
         self._shown_units = self.units
         self.param.watch(self._on_input, [name for name in input_names(self) if name not in _NOT_OF_THE_CASE or name == "seed"])
         for building in self.buildings():
@@ -172,7 +173,7 @@ class PoundingModel(CaseInputs, Studies):
         data = tomllib.loads(preset_text(self.preset))
         case = load_case(self.preset)
         self._clear_records()
-        self._case_label = ""
+        self._case_label = self.case_file_name = ""
         self.param.update(note="", refused={}, upload_error="")
         capacity = _round_up(display(self.units).from_si(_capacity_guess(case), force=1))
         self._set_quietly({"capacity": capacity})
@@ -195,7 +196,7 @@ class PoundingModel(CaseInputs, Studies):
             return
         self._set_quietly({"units": units if units in UNIT_SYSTEMS else "SI"})
         self._shown_units = self.units
-        self._case_label = Path(filename).stem or "case"
+        self._case_label, self.case_file_name = Path(filename).stem or "case", Path(filename).name
         self.refused = {}
         self._show(case, data)
         self.note = f"Loaded {filename}."

@@ -296,7 +296,12 @@ class PoundingDashboard(pn.viewable.Viewer):
         self._exports[:] = [folder]
         name = f"pounding-report-{m.case_slug()}.html"
         self.export.filename = name
-        provenance = case_provenance(m.case_file(), m.preset, command="pounding dashboard (Export report)", units=m.units)
+        command = "pounding dashboard (Export report)"
+        if m.case_file_name:  # an uploaded case file: the report names it, not the preset shown before
+            source = f"{m.case_file_name}{' (modified in the dashboard)' if m.changes() else ''}"
+            provenance = case_provenance(m.case_file(), None, source=source, command=command, units=m.units)
+        else:
+            provenance = case_provenance(m.case_file(), m.preset, command=command, units=m.units)
         return str(write_report(folder / name, snapshot, m.units, provenance=provenance))
 
     def template(self) -> pn.template.FastListTemplate:

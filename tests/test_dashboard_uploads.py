@@ -139,6 +139,10 @@ def test_an_uploaded_case_file_is_named_by_its_file_in_the_headline_and_the_repo
     with dashboard.expect_download(timeout=60_000) as download:
         dashboard.get_by_role("button", name="Export report (HTML)").click()
     assert download.value.suggested_filename == "pounding-report-my-house.html"
+    download.value.save_as(tmp_path / "report.html")
+    report = (tmp_path / "report.html").read_text()
+    assert "<title>Pounding report: my-house</title>" in report and "Inputs: the case my-house.toml." in report
+    assert f"preset {DEFAULT}" not in report
     dashboard.locator(".bk-input-group", has=dashboard.get_by_text("case (preset)")).locator("select").first.select_option(
         "section6-T2-0.4")
     _wait_text(dashboard, ".fe-recommended", shown.force(estimate(load_case("section6-T2-0.4")).force_expected))
