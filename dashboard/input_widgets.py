@@ -66,6 +66,9 @@ class InputField:
         if self.reason is None:
             return
         reason = refused.get(self.key, "")
+        taken = getattr(self.owner, self.name)
+        if not reason and self.widget.value != taken:  # a refusal dropped (a preset, a unit switch): the box shows the value taken
+            self.widget.value = taken
         self.widget.css_classes = ["refused"] if reason else []
         self.reason.object = html.escape(reason)
         self.reason.visible = bool(reason)

@@ -122,3 +122,19 @@ def test_an_uploaded_case_file_names_the_case_until_a_preset_is_chosen():
     model.preset = "section6-T2-0.4"
     assert model.case_name() == "section6-T2-0.4" and model.note == ""
 
+
+
+def test_the_view_shows_a_refused_number_red_until_a_value_is_taken_or_a_preset_replaces_it():
+    from dashboard.view import PoundingDashboard
+
+    page = PoundingDashboard()
+    model = page.model
+    field = next(f for f in page._widgets if f.key == "gap")
+    field.widget.value = -5.0  # typed in the box
+    assert field.widget.css_classes == ["refused"] and field.reason.visible and "-5 mm" in field.reason.object
+    assert model.gap == 10.0 and field.widget.value == -5.0  # the box keeps what was typed, the model what it took
+    field.widget.value = 12.0
+    assert field.widget.css_classes == [] and not field.reason.visible and model.gap == 12.0
+    field.widget.value = -5.0
+    model.preset = "section6-T2-0.4"
+    assert field.widget.css_classes == [] and field.widget.value == model.gap == load_case("section6-T2-0.4").contact.gap * 1000
