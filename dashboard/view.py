@@ -20,8 +20,8 @@ import panel as pn
 import param
 
 from dashboard.headline import HEADLINE_CSS, headline_html, held_note
-from dashboard.jobs import StudyJob
 from dashboard.input_widgets import InputField
+from dashboard.jobs import StudyJob
 from dashboard.model import PoundingModel, input_key
 from dashboard.runner import shared_pool
 from dashboard.tabs import LazyTabs

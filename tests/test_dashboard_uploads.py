@@ -9,9 +9,9 @@ from pathlib import Path
 
 import pytest
 
+from dashboard.inputs import CaseInputs
 from dashboard.model import NO_RECORDS_YET
 from dashboard.refusals import refusal
-from dashboard.inputs import CaseInputs
 from pounding import estimate, load_case, simulate
 from pounding.case.case import case_from_dict
 from pounding.display_units import display

@@ -40,8 +40,8 @@ def test_a_path_for_a_file_name_is_refused_by_the_server_and_nothing_is_taken(na
 def test_a_file_over_the_limit_is_refused_by_the_server_even_if_the_browser_sent_it():
     widget, got, refused = _upload(max_bytes=100)
     widget.receive(_message("m.AT2", b"x" * 101))
-    assert got == [] and refused == ["m.AT2 is 101 bytes, over the 100 bytes an upload may be: shorten or resample it, "
-                                     "or use the command line."]
+    assert got == [] and refused == [("m.AT2 is 101 bytes, over the 100 bytes an upload may be: shorten or resample it, "
+                                      "or use the command line.")]
     widget.receive({"batch": 2, "refused": [{"name": "big.AT2", "size": 30_000_000}]})  # what the browser sends instead
     assert "big.AT2 is 30 MB, over the 100 bytes" in refused[-1]
 
