@@ -16,7 +16,7 @@ from pounding.display_units import display
 from pounding.report import monte_carlo_check
 from pounding.studies.check import unpounded_bound
 
-__all__ = ["CHECKING", "HEADLINE_CSS", "headline_html"]
+__all__ = ["CHECKING", "HEADLINE_CSS", "headline_html", "held_note"]
 
 CHECKING = "Checking against simulated records\u2026"
 """The verdict line while the check of the estimate shown runs."""
@@ -39,6 +39,7 @@ HEADLINE_CSS = """
 .headline details table { border-collapse: collapse; }
 .headline details td, .headline details th { padding: 1px 8px; text-align: left; border-bottom: 1px solid #eee; }
 .headline.stale { opacity: 0.5; }
+.headline .held { color: #c62828; font-weight: 600; }
 """
 
 _ADVICE = (
@@ -56,6 +57,18 @@ def _in_page_terms(warning: str, done: set[str]) -> str | None:
                 return head or None
             return f"{head} {instead}".strip()
     return warning
+
+
+def held_note(refusals: list[str], waiting: str = "") -> str:
+    """The line that says the numbers are of the last inputs taken: which inputs were refused (their reasons begin
+    with the input's name, ``"Gap: ..."``), or what the page waits for; '' when the numbers are of the inputs shown."""
+    lines = []
+    if refusals:
+        names = ", ".join(reason.split(":", 1)[0] for reason in refusals)
+        lines.append(f"Not taken: {names} (see the input in red). The numbers below are still those of the last valid inputs.")
+    if waiting:
+        lines.append(waiting)
+    return "".join(f'<p class="held">{html.escape(text)}</p>' for text in lines)
 
 
 def _number(value: str, what: str, css: str) -> str:
@@ -105,14 +118,15 @@ def _check_line(check, units: str, checking: bool, check_error: str) -> str:
 
 
 def headline_html(result, units: str = "SI", capacity: float | None = None, monte_carlo=None, design_gap=None,
-                  name: str = "", check=None, checking: bool = False, check_error: str = "") -> str:
+                  name: str = "", check=None, checking: bool = False, check_error: str = "", held: str = "") -> str:
     """The headline of an :class:`~pounding.closed_form.estimator.Estimate` ``result``; ``capacity`` [N] adds P(F_max > capacity);
     ``monte_carlo`` a :class:`~pounding.report.MonteCarloPoint` of exactly this case, ``design_gap`` its Monte Carlo
     design gap, each when run. ``check``, the :class:`~pounding.studies.check.EstimateCheck` of exactly ``result``,
     puts its verdict under the numbers; where the closed form does not agree, the force is the records' (the closed
     form's beside it), and so are the 84th percentile where the check stands behind the records' fractiles and the
     gap where the records need a wider one; the measured accuracy is then stated in full.
-    Without it, ``checking`` says that the check runs, ``check_error`` why it failed."""
+    Without it, ``checking`` says that the check runs, ``check_error`` why it failed. ``held`` (:func:`held_note`)
+    comes first: the numbers are of the last inputs taken."""
     shown = display(units)
     case = result.case
     distribution = result.force_max_distribution
@@ -159,7 +173,7 @@ def headline_html(result, units: str = "SI", capacity: float | None = None, mont
     # beside a verdict the measured range is stated in full, however wide (pounding.closed_form.regimes.SIGNABLE_ERROR)
     accuracy = result.measured_accuracy if check is None else result.accuracy.statement(with_verdict=True)
     lines.append(f'<p class="accuracy">{html.escape(accuracy)}</p>')
-    return (f'<div class="headline">{f"<b>{html.escape(name)}</b>" if name else ""}<div class="numbers">{"".join(numbers)}</div>'
+    return (f'<div class="headline">{held}{f"<b>{html.escape(name)}</b>" if name else ""}<div class="numbers">{"".join(numbers)}</div>'
             + "".join(lines) + _details(result, shown) + "</div>")
 
 

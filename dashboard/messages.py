@@ -3,7 +3,7 @@ file's key beside it (never a command-line option: the page has no command line)
 
 from __future__ import annotations
 
-from pounding.errors import ArgumentError, CaseError
+from pounding.errors import ArgumentError, CaseError, ConvergenceError, SimulationError
 
 __all__ = ["message"]
 
@@ -36,4 +36,8 @@ def message(error: Exception) -> str:
             return f"Invalid input: {field[2:]}: {error.message}"
         prefix = f"{where} ({field})" if where else field
         return f"Invalid input: {prefix}: {error.message}"
-    return f"{type(error).__name__}: {error}"
+    if isinstance(error, ConvergenceError):
+        return f"No estimate for these inputs: {error}"
+    if isinstance(error, SimulationError):
+        return f"A time history failed: {error}"
+    return f"These inputs cannot be computed: {error}"  # never a class name: the page's reader knows none

@@ -18,8 +18,7 @@ from __future__ import annotations
 
 import contextlib
 import math
-import shutil
-import tempfile
+import re
 import tomllib
 from collections.abc import Callable
 from pathlib import Path
@@ -29,8 +28,10 @@ import param
 from dashboard.case_form import case_file_of_inputs, chain_stiffness, inputs_of_case
 from dashboard.inputs import BuildingInputs, CaseInputs, input_names
 from dashboard.messages import message
+from dashboard.refusals import refusal
 from dashboard.runner import Latest
 from dashboard.studies import Studies
+from dashboard.uploads import UploadRefused, checked_name, new_folder, remove
 from dashboard.visibility import applies
 from pounding import defaults
 from pounding.case.case import case_from_dict, load_case
@@ -42,7 +43,11 @@ from pounding.presets import preset_names, preset_text
 from pounding.report import compute_snapshot
 from pounding.units import UNIT_SYSTEMS
 
-__all__ = ["PoundingModel"]
+__all__ = ["NO_RECORDS_YET", "PoundingModel", "input_key"]
+
+NO_RECORDS_YET = ("Upload the records (.AT2 or two-column files) under 'ground motion' to compute recorded motions; "
+                  "until then the page shows the last case computed.")
+"""What the page says when 'recorded motions' is chosen before any record is uploaded."""
 
 _FAILURES = (InputError, ConvergenceError, SimulationError, OverflowError, ValueError)
 """What an input can make the library raise: shown as a message naming the input, never a traceback."""
@@ -76,6 +81,11 @@ class PoundingModel(CaseInputs, Studies):
     error = param.String("", precedence=-1, doc="Why there is no result (names the input).")
     note = param.String("", precedence=-1, doc="A change that moved another input, said once.")
     uploaded = param.List([], precedence=-1, doc="Names of the uploaded records.")
+    upload_error = param.String("", precedence=-1, doc="Why the last upload was refused (its size, its name), or ''.")
+    refused = param.Dict({}, precedence=-1, doc="Values typed but not taken: {input's key (input_key): why, in the "
+                         "input's units}. The results shown stay those of the last inputs taken.")
+    waiting = param.String("", precedence=-1, doc="What the page needs before it computes the inputs shown (records "
+                           "to upload), or ''; the results shown stay those of the last inputs computed.")
 
     def __init__(self, schedule: Callable | None = None, batch=None, submit: Callable | None = None, check: bool = False,
                  **params):
@@ -96,6 +106,8 @@ class PoundingModel(CaseInputs, Studies):
         self._description = ""
         self._preset_values: dict = {}
         self._records_folder: Path | None = None
+        self._case_label = ""  # an uploaded case file's name (stem), while its case is shown
+        self.case_file_name = ""  # that file's name as uploaded ('my-house.toml'), or ''
         self._shown_units = self.units
         self.param.watch(self._on_input, [name for name in input_names(self) if name not in _NOT_OF_THE_CASE or name == "seed"])
         for building in self.buildings():
@@ -119,8 +131,14 @@ class PoundingModel(CaseInputs, Studies):
                                    description=self._description)
 
     def case_name(self) -> str:
-        """The preset's name, marked when the inputs differ from it."""
-        return self.preset if not self.changes() else f"{self.preset} (modified)"
+        """The preset's name (an uploaded case file's), marked when the inputs differ from it."""
+        base = self._case_label or self.preset
+        return base if not self.changes() else f"{base} (modified)"
+
+    def case_slug(self) -> str:
+        """:meth:`case_name` as a file name's part: ``ec8``, ``section5-T2-0.4-modified``."""
+        base = re.sub(r"[^A-Za-z0-9._-]+", "-", self._case_label or self.preset).strip("-.") or "case"
+        return f"{base}-modified" if self.changes() else base
 
     def changes(self) -> list[tuple[str, object, object, str]]:
         """The inputs that differ from the preset's: (label, preset's value, current value, unit), in ``units``."""
@@ -155,6 +173,8 @@ class PoundingModel(CaseInputs, Studies):
         data = tomllib.loads(preset_text(self.preset))
         case = load_case(self.preset)
         self._clear_records()
+        self._case_label = self.case_file_name = ""
+        self.param.update(note="", refused={}, upload_error="")
         capacity = _round_up(display(self.units).from_si(_capacity_guess(case), force=1))
         self._set_quietly({"capacity": capacity})
         self._show(case, data)
@@ -176,6 +196,8 @@ class PoundingModel(CaseInputs, Studies):
             return
         self._set_quietly({"units": units if units in UNIT_SYSTEMS else "SI"})
         self._shown_units = self.units
+        self._case_label, self.case_file_name = Path(filename).stem or "case", Path(filename).name
+        self.refused = {}
         self._show(case, data)
         self.note = f"Loaded {filename}."
 
@@ -191,28 +213,42 @@ class PoundingModel(CaseInputs, Studies):
     def upload_records(self, files: dict[str, bytes]) -> None:
         """Take uploaded records (file name -> content): they replace any uploaded before, and the ground motion
         becomes 'recorded motions'."""
+        try:
+            names = [checked_name(name) for name in files]
+        except UploadRefused as refused:
+            self.upload_error = refused.message
+            return
+        if not names:
+            return
         self._clear_records()
-        folder = Path(tempfile.mkdtemp(prefix="pounding-records-"))
-        for name, content in files.items():
-            (folder / Path(name).name).write_bytes(content)
+        folder = new_folder("pounding-records-")
+        for name, content in zip(names, files.values()):
+            (folder / name).write_bytes(content)
         self._records_folder = folder
-        self._set_quietly({"uploaded": sorted(Path(name).name for name in files)})
+        self._set_quietly({"uploaded": sorted(names), "upload_error": ""})
         if self.ground_motion == "recorded motions":
             self.recompute()
         else:
             self.ground_motion = "recorded motions"
 
+    def close(self) -> None:
+        """Remove the session's uploaded records from the disk (the page's session has closed)."""
+        self._clear_records()
+
     def _clear_records(self) -> None:
-        if self._records_folder is not None:
-            shutil.rmtree(self._records_folder, ignore_errors=True)
+        remove(self._records_folder)
         self._records_folder = None
         self._set_quietly({"uploaded": []})
 
     def _set_quietly(self, values: dict, owner: param.Parameterized | None = None) -> None:
         """Set inputs of ``owner`` (default: this model) without recomputing (a preset, a unit switch, derived values)."""
+        owner = owner or self
+        keys = {input_key(self, owner, name) for name in values}
+        if keys & set(self.refused):  # the input now shows a value taken: its refusal no longer stands
+            self.refused = {key: reason for key, reason in self.refused.items() if key not in keys}
         self._syncing = True
         try:
-            (owner or self).param.update(**values)
+            owner.param.update(**values)
         finally:
             self._syncing = False
 
@@ -264,8 +300,29 @@ class PoundingModel(CaseInputs, Studies):
 
     # --- outputs -------------------------------------------------------------------
 
+    def offer(self, owner: param.Parameterized, name: str, value) -> str:
+        """Take ``value`` typed into input ``name`` of ``owner`` (this model or one of its buildings), or refuse it:
+        a refused value leaves the input's parameter, and so the results, as they were, and its reason (in the
+        input's units) is kept in :attr:`refused`. Returns the reason, or '' when taken."""
+        key = input_key(self, owner, name)
+        reason = refusal(owner, name, value, self.units)
+        if reason:
+            self.refused = {**self.refused, key: reason}
+            return reason
+        if key in self.refused:
+            self.refused = {k: v for k, v in self.refused.items() if k != key}
+        if isinstance(owner.param[name], param.Integer):
+            value = int(value)
+        setattr(owner, name, value)
+        return ""
+
     def recompute(self) -> None:
         """Compute every output for the current inputs, the newest request only: the estimate, then the plots."""
+        if self.ground_motion == "recorded motions" and self._records_folder is None:
+            self._latest.request(lambda current, deliver: None)  # nothing older lands over the prompt
+            self.waiting = NO_RECORDS_YET
+            return
+        self.waiting = ""
         data = self.case_file()
         self._derive_stiffness()
         self._inputs_changed()
@@ -328,6 +385,14 @@ class PoundingModel(CaseInputs, Studies):
     def _on_input(self, *_events) -> None:
         if not self._syncing:
             self.recompute()
+
+
+def input_key(model: PoundingModel, owner: param.Parameterized, name: str) -> str:
+    """The key of input ``name`` of ``owner`` (``model`` or one of its buildings): ``gap``, ``building_2.period``."""
+    for number, building in enumerate(model.buildings(), start=1):
+        if owner is building:
+            return f"building_{number}.{name}"
+    return name
 
 
 def _differs(a, b) -> bool:

@@ -19,8 +19,10 @@ from pounding.simulation.plan import MonteCarloPlan
 from pounding.simulation.system import Settings
 from pounding.studies.check import EstimateCheck, check_estimate
 
-__all__ = ["Studies"]
+__all__ = ["MAX_STUDY_RECORDS", "Studies"]
 
+MAX_STUDY_RECORDS = 2000
+"""Most records of one study of the page (about a minute of two cores); the command line takes more."""
 CHANGED = "the inputs changed."
 """Why a result was dropped."""
 CHANGED_WHILE_RUNNING = "the inputs changed while it ran."
@@ -38,8 +40,9 @@ class Studies(param.Parameterized):
     :meth:`_inputs_changed` on every change of input, :meth:`_invalidate_studies` on every new case and
     :meth:`_check` on every new estimate."""
 
-    records = param.Integer(defaults.DASHBOARD_RECORDS, bounds=(10, 2000), label="records",
-                            doc="Records of the Monte Carlo study and of the Monte Carlo design gap.")
+    records = param.Integer(defaults.DASHBOARD_RECORDS, bounds=(1, MAX_STUDY_RECORDS), label="records",
+                            doc="Records of the Monte Carlo study and of the Monte Carlo design gap (recorded motions: "
+                            "each of them once, whatever this says).")
     seed = param.Integer(DEFAULT_SEED, bounds=(0, None), label="seed", doc="Seed of the records (the same seed, the same records).")
 
     monte_carlo_job = param.ClassSelector(class_=StudyJob, precedence=-1, doc="The reduced-sample Monte Carlo of the current "
@@ -148,7 +151,8 @@ class Studies(param.Parameterized):
             return
         case = self.snapshot.case
         self._mc_gap = case.contact.gap
-        self.monte_carlo_job.start(partial(simulate, case, records=self.records, seed=self.seed), self.records,
+        records = _records_of(case, self.records)
+        self.monte_carlo_job.start(partial(simulate, case, records=records, seed=self.seed), records,
                                keep=lambda result: (*self.monte_carlo_points(), MonteCarloPoint.from_result(result)))
 
     def current_design_gap(self) -> DesignGap | None:
@@ -170,12 +174,17 @@ class Studies(param.Parameterized):
             return
         case = self.snapshot.case
         target = self.snapshot.estimate.target_probability
-        records, seed = self.records, self.seed
+        records, seed = _records_of(case, self.records), self.seed
         shown = self.current_design_gap()
         if shown is not None and (shown.n_records, shown.seed) == (records, seed):
             self.design_gap_job.status = f"Monte Carlo design gap: already computed for these inputs ({records} records, seed {seed})."
             return
         self.design_gap_job.start(partial(design_gap, case, target, records=records, seed=seed), records)
+
+
+def _records_of(case, records: int) -> int:
+    """The records of a study of ``case``: ``records`` synthetic ones, or each recorded motion of the case once."""
+    return len(case.hazard.records) if case.recorded else records
 
 
 def _study_key(case):

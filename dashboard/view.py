@@ -12,18 +12,21 @@ headline (``headline.py``), and plots whose data the library computes.
 from __future__ import annotations
 
 import contextlib
+import html
 import io
-import tempfile
 from pathlib import Path
 
 import panel as pn
 import param
 
-from dashboard.headline import HEADLINE_CSS, headline_html
+from dashboard.headline import HEADLINE_CSS, headline_html, held_note
+from dashboard.input_widgets import InputField
 from dashboard.jobs import StudyJob
-from dashboard.model import PoundingModel
+from dashboard.model import PoundingModel, input_key
 from dashboard.runner import shared_pool
 from dashboard.tabs import LazyTabs
+from dashboard.upload_widget import FileUpload
+from dashboard.uploads import MAX_CASE_BYTES, MAX_RECORD_BYTES, MAX_RECORD_FILES, new_folder, remove, size_text
 from dashboard.visibility import visible
 from pounding.display_units import display
 from pounding.report import Figures, case_provenance, write_report
@@ -41,10 +44,6 @@ PAGE_CSS = """
 """
 BUTTON_CSS = ".bk-btn[disabled] { opacity: 0.4 !important; cursor: not-allowed !important; filter: grayscale(100%); }"
 """Inside each button's shadow root: a disabled button greyed out, not a paler colour of an active one."""
-
-_FORMATS = {"G0": "0,0.[000]", "contact_stiffness": "0,0.[000]", "capacity": "0,0.[00]", "mass": "0,0.[000]", "stiffness": "0,0.[00]",
-            "target_probability": "0.[0000]", "pga": "0.[000]", "gap": "0,0.[000]"}
-
 
 def _session():
     """The session's document when served (None in a notebook or a script)."""
@@ -82,29 +81,21 @@ class PoundingDashboard(pn.viewable.Viewer):
         super().__init__(**params)
         self._delay = (lambda fn: doc.add_timeout_callback(fn, REDRAW_DELAY_MS)) if doc else (lambda fn: fn())
         self._batch = (lambda: pn.io.hold(doc)) if doc else contextlib.nullcontext
-        self._widgets: list[tuple[param.Parameterized, str, pn.widgets.Widget]] = []  # (owner, name, widget)
+        self._widgets: list[InputField] = []
+        self._exports: list[Path] = []  # the folders of this session's exported reports
+        if doc is not None:  # the session's files go with it
+            doc.on_session_destroyed(lambda _context: self.close())
         self._build()
 
     # --- widgets -------------------------------------------------------------------
 
-    def _widget(self, name: str, owner: param.Parameterized | None = None, **options) -> pn.widgets.Widget:
-        """The widget of input ``name`` of ``owner`` (default: the model; else one of its buildings)."""
+    def _widget(self, name: str, owner: param.Parameterized | None = None, **options):
+        """The widget of input ``name`` of ``owner`` (default: the model; else one of its buildings), with the reason
+        a typed number was refused under it."""
         owner = owner or self.model
-        parameter = owner.param[name]
-        if isinstance(parameter, param.Boolean):
-            kind = pn.widgets.Switch
-        elif isinstance(parameter, param.Selector):
-            kind = pn.widgets.Select  # labelled, unlike a group of toggles
-        elif isinstance(parameter, param.Integer):
-            kind = pn.widgets.IntInput
-        else:
-            kind = pn.widgets.FloatInput
-            options.setdefault("format", _FORMATS.get(name, "0.[0000]"))
-        if "description" in kind.param:
-            options.setdefault("description", parameter.doc)
-        widget = kind.from_param(parameter, sizing_mode="stretch_width", **options)
-        self._widgets.append((owner, name, widget))
-        return widget
+        field = InputField(self.model, owner, name, input_key(self.model, owner, name), **options)
+        self._widgets.append(field)
+        return field.panel
 
     def _inputs(self, *names: str, owner: param.Parameterized | None = None) -> list:
         return [self._widget(name, owner) for name in names]
@@ -113,16 +104,19 @@ class PoundingDashboard(pn.viewable.Viewer):
         names = ("storeys", "period", "mass", "stiffness", "damping_ratio", "hysteresis", "yield_drift", "yield_force",
                  "post_yield_ratio", "n", "beta_share", "alpha", "A", "beta", "gamma")
         widgets = self._inputs(*names, owner=building)
-        widgets[names.index("stiffness")].disabled = True  # derived from the period
+        self._widgets[-len(names) + names.index("stiffness")].widget.disabled = True  # derived from the period
         return pn.Card(*widgets, title=f"Building {building.number}", collapsed=True, sizing_mode="stretch_width")
 
     def _build(self) -> None:
         m = self.model
-        self.records_upload = pn.widgets.FileInput(accept=".AT2,.at2,.csv,.txt", multiple=True, sizing_mode="stretch_width",
-                                                   description="PEER .AT2 or two-column (time s, acceleration g) files")
-        self.records_upload.param.watch(self._on_records, "value")
-        self.case_upload = pn.widgets.FileInput(accept=".toml", sizing_mode="stretch_width", description="A case file (TOML)")
-        self.case_upload.param.watch(self._on_case_file, "value")
+        self.records_upload = FileUpload(m.upload_records, self._refuse_upload, accept=".AT2,.at2,.csv,.txt", multiple=True,
+                                         max_bytes=MAX_RECORD_BYTES, max_files=MAX_RECORD_FILES, sizing_mode="stretch_width")
+        self.case_upload = FileUpload(self._on_case_file, self._refuse_upload, accept=".toml", max_bytes=MAX_CASE_BYTES,
+                                      sizing_mode="stretch_width")
+        def upload_error():
+            return pn.pane.HTML(pn.bind(html.escape, m.param.upload_error), visible=pn.bind(bool, m.param.upload_error),
+                                css_classes=["upload-refused"], styles={"color": "#c62828", "font-size": "12px"},
+                                sizing_mode="stretch_width")
         self.case_download = pn.widgets.FileDownload(callback=lambda: io.StringIO(m.toml()), filename="case.toml",
                                                      label="Download the case (TOML)", button_type="light", sizing_mode="stretch_width")
         uploaded = pn.pane.Markdown(pn.bind(lambda names: ("Uploaded: " + ", ".join(names)) if names else "No records uploaded yet.",
@@ -132,7 +126,10 @@ class PoundingDashboard(pn.viewable.Viewer):
             pn.Card(*self._inputs("gap", "target_probability", "capacity", "restitution"), title="Design", sizing_mode="stretch_width"),
             pn.Card(*self._inputs("ground_motion", "intensity", "pga", "G0", "omega_g", "xi_g", "record_set", "component",
                                   "scaling", "scale", "records_pga", "fit", "code", "ag", "ground_type", "spectrum_type", "SDS", "SD1", "TL"),
-                    pn.Column(pn.pane.Markdown("Records (.AT2):", margin=(0, 10)), self.records_upload, uploaded,
+                    pn.Column(pn.pane.Markdown(f"Records: PEER .AT2 or two columns (time s, acceleration g), up to "
+                                               f"{size_text(MAX_RECORD_BYTES)} each, {MAX_RECORD_FILES} at most:", margin=(0, 10),
+                                               css_classes=["upload-limit"]),
+                              self.records_upload, upload_error(), uploaded,
                               visible=pn.bind(lambda form: form == "recorded motions", m.param.ground_motion), sizing_mode="stretch_width"),
                     *self._inputs("duration", "envelope", "B1", "B2"),
                     title="Ground motion", collapsed=True, sizing_mode="stretch_width"),
@@ -140,7 +137,8 @@ class PoundingDashboard(pn.viewable.Viewer):
             pn.Card(*(self._widget("contact_floor", building) for building in m.buildings()),
                     *self._inputs("contact_model", "contact_stiffness"), title="Contact", collapsed=True, sizing_mode="stretch_width"),
             pn.Card(self._widget("units"), self._widget("advanced"), self.case_download,
-                    pn.pane.Markdown("Upload a case file:", margin=(0, 10)), self.case_upload,
+                    pn.pane.Markdown(f"Upload a case file (TOML, up to {size_text(MAX_CASE_BYTES)}):", margin=(0, 10)), self.case_upload,
+                    upload_error(),
                     title="Units and case file", collapsed=True, sizing_mode="stretch_width"),
             sizing_mode="stretch_width",
         )
@@ -148,13 +146,15 @@ class PoundingDashboard(pn.viewable.Viewer):
         for building in m.buildings():
             building.param.watch(self._refresh_inputs, list(SHAPING_BUILDING))
         self._refresh_inputs()
+        m.param.watch(self._show_refusals, "refused")
 
         self.error = pn.pane.Alert(pn.bind(lambda e: e or "ok", m.param.error), alert_type="danger",
                                    visible=pn.bind(bool, m.param.error), sizing_mode="stretch_width", css_classes=["input-error"])
         self.note = pn.pane.Markdown(m.param.note, css_classes=["change-note"], visible=pn.bind(bool, m.param.note), sizing_mode="stretch_width")
         self.headline = pn.pane.HTML(
             pn.bind(self._headline, m.param.result, m.param.units, m.param.capacity, m.monte_carlo_job.param.result,
-                    m.design_gap_job.param.result, m.param.error, m.check_job.param.result, m.check_job.param.error),
+                    m.design_gap_job.param.result, m.param.error, m.check_job.param.result, m.check_job.param.error,
+                    m.param.refused, m.param.waiting),
             stylesheets=[HEADLINE_CSS], sizing_mode="stretch_width", min_width=380,
         )
         self.export = pn.widgets.FileDownload(callback=self._export, filename="pounding-report.html", label="Export report (HTML)",
@@ -212,8 +212,8 @@ class PoundingDashboard(pn.viewable.Viewer):
             m.monte_carlo_job, m.run_monte_carlo, "Run Monte Carlo", "Cancel", "mc")
         self.run_design_gap, self.cancel_design_gap, self.design_gap_progress, design_gap_status = self._job_controls(
             m.design_gap_job, m.run_design_gap, "Monte Carlo design gap", "Cancel design gap", "design-gap")
-        records = pn.widgets.IntInput.from_param(m.param.records, width=140, description=m.param.records.doc)
-        seed = pn.widgets.IntInput.from_param(m.param.seed, width=120, description=m.param.seed.doc)
+        records = self._widget("records", width=220, sizing_mode=None)
+        seed = self._widget("seed", width=160, sizing_mode=None)
         return pn.Column(
             pn.pane.Markdown("Nonlinear time histories of the same buildings with pounding (the 'exact' method): the mean "
                              "F_max with its 95 % interval beside the estimate, and the gap for the target from the records' free motion."),
@@ -230,24 +230,31 @@ class PoundingDashboard(pn.viewable.Viewer):
         m = self.model
         shown = display(m.units)
         dims = {owner: owner.dimensions() for owner in (m, *m.buildings())}
-        for owner, name, widget in self._widgets:
-            if name in ("preset", "units", "advanced"):
+        for field in self._widgets:
+            owner, name = field.owner, field.name
+            if name in ("preset", "units", "advanced", "records", "seed"):
                 continue
-            widget.visible = visible(m, owner, name)
+            field.visible = visible(m, owner, name)
             label = owner.param[name].label
-            widget.name = f"{label} [{shown.label(**dims[owner][name])}]" if name in dims[owner] else label
+            field.widget.name = f"{label} [{shown.label(**dims[owner][name])}]" if name in dims[owner] else label
+
+    def _show_refusals(self, *_events) -> None:
+        for field in self._widgets:
+            field.show_refusal(self.model.refused)
 
     # --- outputs -------------------------------------------------------------------
 
-    def _headline(self, result, units, capacity, _points, _design_gap, error, _check, _check_error) -> str:
+    def _headline(self, result, units, capacity, _points, _design_gap, error, _check, _check_error, refused, waiting) -> str:
         m = self.model
+        held = held_note(list(refused.values()), waiting)
         if result is None:
             text = "No result: the inputs are invalid (see the message above)." if error else "Computing..."
-            return f'<div class="headline stale"><p>{text}</p></div>'
+            return f'<div class="headline stale">{held}<p>{text}</p></div>'
         capacity_si = display(units).to_si(capacity, force=1)
         check, check_error = m.current_check(), m.check_error()
         return headline_html(result, units, capacity_si, m.monte_carlo_for_current_gap(), m.current_design_gap(), m.case_name(),
-                             check=check, checking=m.checks and check is None and not check_error, check_error=check_error)
+                             check=check, checking=m.checks and check is None and not check_error, check_error=check_error,
+                             held=held)
 
     def _request_redraw(self, *_events) -> None:
         if not self._redraw_pending:
@@ -261,15 +268,20 @@ class PoundingDashboard(pn.viewable.Viewer):
             self.figures.fill(m.snapshot, m.units, m.monte_carlo_points(), m.current_design_gap())
         self.tabs.refresh()
 
-    def _on_records(self, event) -> None:
-        if event.new:
-            names = self.records_upload.filename if isinstance(self.records_upload.filename, list) else [self.records_upload.filename]
-            values = event.new if isinstance(event.new, list) else [event.new]
-            self.model.upload_records(dict(zip(names, values)))
+    def _refuse_upload(self, reason: str) -> None:
+        self.model.upload_error = reason
 
-    def _on_case_file(self, event) -> None:
-        if event.new:
-            self.model.load_toml(event.new, self.case_upload.filename or "case.toml")
+    def _on_case_file(self, files: dict[str, bytes]) -> None:
+        for name, content in files.items():
+            self.model.upload_error = ""
+            self.model.load_toml(content, name)
+
+    def close(self) -> None:
+        """Remove the session's files (uploaded records, exported reports): its page has closed."""
+        self.model.close()
+        for folder in self._exports:
+            remove(folder)
+        self._exports.clear()
 
     def _export(self):
         from dataclasses import replace
@@ -278,10 +290,18 @@ class PoundingDashboard(pn.viewable.Viewer):
         if m.snapshot is None:
             return None
         snapshot = replace(m.snapshot, monte_carlo=m.monte_carlo_points(), design_gap=m.current_design_gap())
-        folder = Path(tempfile.mkdtemp(prefix="pounding-report-"))
-        name = f"pounding-report-{m.preset}{'-modified' if m.changes() else ''}.html"
+        for old in self._exports:  # the browser has the report before: one at a time on the disk
+            remove(old)
+        folder = new_folder("pounding-report-")
+        self._exports[:] = [folder]
+        name = f"pounding-report-{m.case_slug()}.html"
         self.export.filename = name
-        provenance = case_provenance(m.case_file(), m.preset, command="pounding dashboard (Export report)", units=m.units)
+        command = "pounding dashboard (Export report)"
+        if m.case_file_name:  # an uploaded case file: the report names it, not the preset shown before
+            source = f"{m.case_file_name}{' (modified in the dashboard)' if m.changes() else ''}"
+            provenance = case_provenance(m.case_file(), None, source=source, command=command, units=m.units)
+        else:
+            provenance = case_provenance(m.case_file(), m.preset, command=command, units=m.units)
         return str(write_report(folder / name, snapshot, m.units, provenance=provenance))
 
     def template(self) -> pn.template.FastListTemplate:

@@ -181,6 +181,10 @@ def test_opposing_force_is_validated():
 
     with pytest.raises(ArgumentError, match="opposing_force"):
         impact_peak_force(Contact(gap=0.0, stiffness=BETA), 0.3, REDUCED_MASS, -1.0)
+    # an array of them is named by its first bad value, never printed whole (issue 33: a page showed array([[0.],[inf],...]))
+    with pytest.raises(ArgumentError) as caught:
+        impact_peak_force(Contact(gap=0.0, stiffness=BETA), 0.3, REDUCED_MASS, np.array([[0.0], *[[np.inf]] * 40]))
+    assert caught.value.message.endswith("got inf N") and "array" not in caught.value.message
 
 
 def test_restoring_forces_brake_an_impact_of_two_buildings():

@@ -9,6 +9,7 @@ import contextlib
 import io
 import json
 import math
+import re
 import tomllib
 
 import pytest
@@ -201,3 +202,95 @@ def test_a_mutated_case_file_is_simulated_or_refused_in_one_line(tmp_path_factor
         assert _finite({key: value for key, value in data.items() if key != "closed_form"})
     else:
         assert code in (1, 2) and len(err.strip().splitlines()) == 1, err
+
+
+# --- the dashboard's inputs, through its model --------------------------------------------------------------------
+
+DASHBOARD_NUMBERS = st.one_of(
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.integers(-10**12, 10**12),
+    st.sampled_from([0, -1, -5, 1e-300, 1e300, 1e308, -1e308, 0.5, 1, 2, 10, 1e11]),
+    st.none(),  # an emptied box
+)
+
+
+def _dashboard_inputs():
+    from dashboard.model import PoundingModel
+
+    model = PoundingModel()
+    owners = {"model": model, "building_1": model.building_1, "building_2": model.building_2}
+    return [(owner, name) for owner, target in owners.items() for name in target.param
+            if name != "name" and name != "stiffness" and (target.param[name].precedence or 0) >= 0]
+
+
+DASHBOARD_INPUTS = _dashboard_inputs()
+
+
+@st.composite
+def dashboard_changes(draw):
+    """One to three inputs changed as the page would: a number typed (anything) or a choice picked."""
+    import param
+
+    from dashboard.model import PoundingModel
+
+    probe = PoundingModel()
+    changes = []
+    for _ in range(draw(st.integers(1, 3))):
+        owner, name = draw(st.sampled_from(DASHBOARD_INPUTS))
+        parameter = (probe if owner == "model" else getattr(probe, owner)).param[name]
+        if isinstance(parameter, param.Selector):
+            value = draw(st.sampled_from(list(parameter.objects)))
+        elif isinstance(parameter, param.Boolean):
+            value = draw(st.booleans())
+        else:
+            value = draw(DASHBOARD_NUMBERS)
+        changes.append((owner, name, value))
+    return changes
+
+
+def _sane_number(value: float) -> bool:
+    return math.isfinite(value) and value >= 0.0
+
+
+@settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow], derandomize=True)
+@given(changes=dashboard_changes())
+def test_the_dashboards_inputs_are_taken_or_refused_and_nothing_absurd_is_shown(changes):
+    """Any value typed into any of the page's inputs is taken or refused (``PoundingModel.offer``: a reason of one
+    or two short sentences with the range and its unit, the input's value kept); never an exception. What the page
+    then shows is finite numbers, a force and a gap never negative, or one message naming the input."""
+    import param
+
+    from dashboard.headline import headline_html
+    from dashboard.model import PoundingModel
+
+    model = PoundingModel()
+    for owner_name, name, value in changes:
+        owner = model if owner_name == "model" else getattr(model, owner_name)
+        if isinstance(owner.param[name], param.Selector | param.Boolean):
+            setattr(owner, name, value)
+            continue
+        before = getattr(owner, name)
+        reason = model.offer(owner, name, value)
+        if reason:
+            assert getattr(owner, name) == before  # not taken
+            said = reason.split(": ", 1)[1]  # after the input's name as the page labels it (omega_g)
+            assert len(reason) <= 200 and "\n" not in reason and "_" not in said and "array(" not in reason, reason
+            assert "; type " in reason, reason  # what to do, with the range
+    if model.waiting:  # recorded motions chosen, nothing uploaded: the last case stays
+        assert "Upload the records" in model.waiting
+    result = model.result
+    if result is None:
+        error = model.error
+        assert error and "\n" not in error and len(error) <= 400, error
+        assert not re.search(r"array\(|Traceback|\w+Error\b| --\w", error), error
+        return
+    assert _sane_number(result.force_expected) and _sane_number(result.required_gap), result
+    assert 0.0 <= result.pounding_probability <= 1.0
+    assert all(_sane_number(result.force_max_distribution.quantile(q)) for q in (0.5, 0.84, 0.95))
+    page = headline_html(result, model.units, name=model.case_name())
+    assert "nan" not in page.lower().replace("nonstationary", "") and "inf " not in page and "-" not in _numbers(page)
+
+
+def _numbers(page: str) -> str:
+    """The headline's big numbers, joined (a minus sign among them would be an absurd force, gap or probability)."""
+    return " ".join(re.findall(r'class="value [^"]*">([^<]*)<', page))

@@ -241,3 +241,26 @@ def test_a_recorded_case_states_the_accuracy_measured_on_recorded_suites(suite):
     assert "recorded suites" in recorded.measured_accuracy
     synthetic = estimate(load_case(PRESET)).accuracy  # the same buildings under the process: the grid's row
     assert "recorded suites" not in synthetic.where
+
+
+@pytest.mark.parametrize(("count", "size"), [(3930, 199_000_000), (2_000_000, 100_000)])
+def test_an_at2_file_whose_size_cannot_hold_its_npts_is_refused_from_its_header(tmp_path, count, size):
+    """Issue 33: a 199 MB record with a wrong NPTS was read and parsed whole (18 s, 1.85 GB) before it was refused;
+    the header and the file's size tell it at once, naming the NPTS line."""
+    path = tmp_path / "wrong.AT2"
+    with path.open("wb") as stream:
+        stream.write(f"PEER\nEVENT\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS= {count:7d}, DT= .00500 SEC\n".encode())
+        stream.write(b"  .1234567E-02" * 5 + b"\n")
+        stream.truncate(size)  # the rest sparse: as large on the disk as in the listing, never written
+    with pytest.raises(CaseError) as caught:
+        read_accelerogram(path)
+    assert caught.value.field == f"{path}:4" and f"NPTS = {count}" in caught.value.message
+    assert ("more than" if size > count else "fewer than") in caught.value.message
+
+
+def test_an_at2_file_of_the_size_its_npts_needs_is_read(tmp_path):
+    """The check against the size passes a long record written as the NGA files are (100,000 values, 1.4 MB)."""
+    values = np.random.default_rng(0).normal(0.0, 0.05, 100_000)
+    path = write_at2(tmp_path / "long.AT2", Accelerogram("long", 0.005, values * STANDARD_GRAVITY))
+    assert path.stat().st_size > 65_536
+    assert read_accelerogram(path).acceleration.size == 100_000

@@ -3,6 +3,7 @@
 a killed client, bad --vary specs."""
 
 import argparse
+import contextlib
 import importlib
 import json
 import math
@@ -156,7 +157,19 @@ def test_the_table_does_not_depend_on_chunking(tmp_path, serial_table):
 
 
 def test_two_worker_local_cluster_equals_serial_exactly(tmp_path, serial_table):
-    table = run_sweep(tmp_path / "local", scheduler=None, workers=2, chunk_records=2)  # the default: a LocalCluster
+    """Also while another cluster holds Dask's port 8787 (here a socket): the local cluster's scheduler serves
+    its HTTP routes on a free port, with no "Port 8787 is already in use" warning on the user's terminal."""
+    import socket
+    import warnings
+
+    with contextlib.ExitStack() as stack, warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        holder = stack.enter_context(socket.socket(socket.AF_INET, socket.SOCK_STREAM))
+        with contextlib.suppress(OSError):  # already held by another cluster on this machine: as well
+            holder.bind(("", 8787))
+            holder.listen()
+        table = run_sweep(tmp_path / "local", scheduler=None, workers=2, chunk_records=2)  # the default: a LocalCluster
+    assert not [w for w in caught if "already in use" in str(w.message)]
     assert table.attrs["chunks_computed"] == 6 * 3
     pd.testing.assert_frame_equal(table, serial_table, check_exact=True)
 

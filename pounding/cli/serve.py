@@ -5,7 +5,9 @@ process's group. SIGINT (Ctrl-C), SIGTERM and SIGHUP received here are passed
 on to it as SIGTERM (Bokeh's server shuts down on it), and this process waits
 for it to end before it acts on the signal itself; on Linux the child also
 gets SIGTERM if this process is killed outright. Nothing is left serving the
-port once ``pounding dashboard`` has ended.
+port once ``pounding dashboard`` has ended, nor any of its temporary files: the server keeps them in one folder
+that this process makes, names to it (:data:`TEMPORARY_FOLDER_VARIABLE`) and removes once it has ended, whatever
+ended it.
 """
 
 from __future__ import annotations
@@ -13,7 +15,14 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-__all__ = ["dashboard_app_path", "port_number", "serve_dashboard"]
+__all__ = ["TEMPORARY_FOLDER_VARIABLE", "WEBSOCKET_MESSAGE_BYTES", "dashboard_app_path", "port_number", "serve_dashboard"]
+
+TEMPORARY_FOLDER_VARIABLE = "POUNDING_DASHBOARD_TMP"
+"""Environment variable naming the folder where the dashboard's server keeps its sessions' files (uploaded records,
+exported reports); ``pounding dashboard`` makes it and removes it when the server has ended."""
+WEBSOCKET_MESSAGE_BYTES = 10_000_000
+"""The server's largest websocket message [bytes]: a file uploaded within the page's limit (5 MB, sent as base64)
+fits; a larger message closes the connection before it is read whole."""
 
 SERVER_PROCESSES = 1
 """Server processes of ``pounding dashboard``. One: the sessions' computations share its thread pool (one thread a
@@ -132,7 +141,8 @@ def serve_dashboard(port: int = 5006, show: bool = False, extra_origins: list[st
     if not app.is_file():
         raise FileNotFoundError(errno.ENOENT, "the dashboard script is missing; reinstall pounding (python3 -m pip install pounding)", str(app))
     port = port or _free_port()
-    command = [sys.executable, "-m", "pounding.cli.dashboard_server", str(app), "--port", str(port), "--num-procs", str(SERVER_PROCESSES)]
+    command = [sys.executable, "-m", "pounding.cli.dashboard_server", str(app), "--port", str(port), "--num-procs", str(SERVER_PROCESSES),
+               "--websocket-max-message-size", str(WEBSOCKET_MESSAGE_BYTES)]
     origins = [f"localhost:{port}", f"127.0.0.1:{port}", *(extra_origins or [])]
     for origin in origins:
         command += ["--allow-websocket-origin", origin]
@@ -141,8 +151,18 @@ def serve_dashboard(port: int = 5006, show: bool = False, extra_origins: list[st
     for stream in (sys.stdout, sys.stderr):
         stream.flush()
     linux = sys.platform.startswith("linux")
+    import os
+    import shutil
+    import tempfile
+
+    folder = tempfile.mkdtemp(prefix="pounding-dashboard-")
+    environment = {**os.environ, TEMPORARY_FOLDER_VARIABLE: folder}
     # Its own process group: the server's forked processes are ended with it (pounding/cli/dashboard_server.py).
-    process = subprocess.Popen(command, preexec_fn=_die_with_parent if linux else None, start_new_session=linux)
+    try:
+        process = subprocess.Popen(command, preexec_fn=_die_with_parent if linux else None, start_new_session=linux, env=environment)
+    except BaseException:
+        shutil.rmtree(folder, ignore_errors=True)
+        raise
     received: list[int] = []
     deadline = None
 
@@ -174,6 +194,7 @@ def serve_dashboard(port: int = 5006, show: bool = False, extra_origins: list[st
                 process.wait()
         if linux:
             _end_group(process.pid)
+        shutil.rmtree(folder, ignore_errors=True)  # the sessions' files, however the server ended
         for signum, handler in previous.items():
             signal.signal(signum, signal.SIG_DFL if handler is None else handler)
     if received:

@@ -164,6 +164,40 @@ def _text(path: Path, name: str) -> str:
         raise CaseError(name, f"not a UTF-8 text file (byte 0x{data[error.start]:02x} at offset {error.start})") from None
 
 
+_HEADER_BYTES = 65_536
+"""Bytes read of an .AT2 file for its four header lines before the rest (a header line is under 200 bytes)."""
+_BYTES_PER_VALUE = (1, 64)
+"""Fewest and most bytes one value of an .AT2 file takes with its separator: ``0`` and a space, or a 17-digit
+number written with spaces around it (NGA files write 15 characters)."""
+
+
+def _check_size_against_header(path: Path, name: str) -> None:
+    """Refuse an .AT2 file whose size cannot hold the NPTS values its header announces, from the header and the
+    file's size alone (a 199 MB file with a wrong NPTS was read, parsed and refused after 18 s and 1.85 GB)."""
+    try:
+        size = path.stat().st_size
+        if not path.is_file() or size <= _HEADER_BYTES:
+            return  # small, or not a file: read whole, and named there
+        with path.open("rb") as stream:
+            head = stream.read(_HEADER_BYTES).decode("utf-8-sig", errors="replace").splitlines()
+    except OSError:
+        return  # named when the file is read
+    if len(head) < 5:
+        return
+    header = _NGA_WEST2.match(head[3]) or _OLD_LAYOUT.match(head[3])
+    if header is None:
+        return  # named when the file is read
+    count = int(header.group(1))
+    body = size - sum(len(line.encode()) + 1 for line in head[:4])
+    fewest, most = _BYTES_PER_VALUE
+    if body > count * most + _HEADER_BYTES:
+        raise CaseError(f"{name}:4", f"NPTS = {count}, but {body:,} bytes follow the header: more than {count:,} values "
+                        f"can take; correct NPTS or the file")
+    if body < count * fewest:
+        raise CaseError(f"{name}:4", f"NPTS = {count}, but only {body:,} bytes follow the header: fewer than {count:,} "
+                        f"values need; correct NPTS or the file")
+
+
 def _float(token: str) -> float:
     return float(token.replace("D", "E").replace("d", "e"))
 
@@ -280,6 +314,8 @@ def read_accelerogram(path, name: str | None = None) -> Accelerogram:
     suffix = path.suffix.lower()
     if suffix not in SUFFIXES:
         raise CaseError(name, f"unknown suffix {quote(path.suffix, 20) if path.suffix else '(none)'}; allowed: {', '.join(SUFFIXES)} (any case)")
+    if suffix == ".at2":
+        _check_size_against_header(path, name)
     text = _text(path, name)
     step, values = (_read_at2 if suffix == ".at2" else _read_table)(text, name)
     return Accelerogram(name, step, values)

@@ -289,7 +289,8 @@ def impact_peak_force(contact: Contact, approach_velocity, reduced_mass: float, 
     undamped = undamped_peak_force(contact, approach_velocity, reduced_mass)
     opposing = np.asarray(opposing_force, dtype=float)
     if np.any(opposing < 0.0) or not np.all(np.isfinite(opposing)):
-        raise ArgumentError("opposing_force", f"must be finite and >= 0 N (it opposes the approach), got {opposing_force!r}")
+        bad = opposing[~(np.isfinite(opposing) & (opposing >= 0.0))].ravel()[0]  # the first, never the whole array
+        raise ArgumentError("opposing_force", f"must be finite and >= 0 N (it opposes the approach), got {quote(float(bad))} N")
     if not np.any(opposing):
         return peak_force_ratio(contact.model, contact.restitution) * undamped
     undamped, opposing = np.broadcast_arrays(np.asarray(undamped, dtype=float), opposing)

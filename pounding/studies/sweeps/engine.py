@@ -3,6 +3,7 @@ chunks' totals, the Monte Carlo summary and the table."""
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import os
 from collections.abc import Callable, Iterable, Mapping, Sequence
@@ -92,6 +93,9 @@ class _Client:
                 threads_per_worker=1,
                 processes=True,
                 dashboard_address=None,
+                # no dashboard, and the scheduler's own HTTP server (health checks) on a free port: on 8787, its
+                # default, a second sweep on the machine warned "Port 8787 is already in use"
+                scheduler_kwargs={"dashboard": False, "dashboard_address": ":0"},
                 silence_logs=logging.ERROR,
             )
             self.client = Client(self.cluster)
@@ -104,10 +108,22 @@ class _Client:
             raise ArgumentError("scheduler", f"give a scheduler address, a distributed.Client, {SERIAL!r} or None, got {scheduler!r}")
 
     def close(self) -> None:
+        """Close what this made. The local cluster's workers stop their heartbeats first: a heartbeat in flight
+        while the scheduler retired its worker logged "Failed to communicate with scheduler during heartbeat"
+        with a CommClosedError traceback at the end of about 1 successful run in 20 (distributed's own race
+        between ``remove_worker`` and a heartbeat). Then the client, then the cluster (workers, then scheduler)."""
+        if self.cluster is not None and self.client is not None:
+            with contextlib.suppress(Exception):  # a worker already gone: it sends no heartbeat either
+                self.client.run(_stop_heartbeat)
         if self.owned and self.client is not None:
             self.client.close()
         if self.cluster is not None:
             self.cluster.close()
+
+
+def _stop_heartbeat(dask_worker) -> None:
+    """On a Dask worker: no more heartbeats to the scheduler (the one running, if any, ends before this returns)."""
+    dask_worker.periodic_callbacks["heartbeat"].stop()
 
 
 def _run_tasks(tasks: list[_Task], client, seed: int, tolerance: float, done: Callable[[_Task, dict], None]) -> None:
