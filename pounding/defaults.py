@@ -156,3 +156,12 @@ ACCURACY_SEED = 11
 MAX_GAPS = 100_000
 """Gaps of one force-versus-gap curve (``Estimate.gap_curve``, ``force_versus_gap``): 100 gaps take about 4 ms, so
 the limit about 4 s."""
+
+FLOOR_MASS_RANGE = (1.0, 1.0e10)
+"""[kg] The floor masses a case may give: from a floor of a model on a shake table to ten million tonnes, far
+beyond any building's floor. A mass outside (often a stiffness or period mistyped by powers of ten) is refused
+rather than answered with forces of 1e121 floor weights."""
+CONTACT_STIFFNESS_RANGE = (1.0e3, 1.0e16)
+"""[N/m or N/m^1.5, SI] The contact stiffnesses a case may give: rubber bumpers on a laboratory model (about 1e5)
+to stiffer than any concrete contact measured (Jankowski 2005: 2.75e9 N/m^1.5); softer or stiffer is a typing
+mistake, answered before with penetrations of 1e120 sigma."""

@@ -141,3 +141,23 @@ def test_the_dashboard_names_an_argument_in_words_never_as_a_flag():
     text = message(ArgumentError("target_probability", "must lie in (0, 1), got 1.5"))
     assert text == "Invalid input: target probability: must lie in (0, 1), got 1.5" and "--" not in text
     assert "(contact.gap)" in message(CaseError("contact.gap", "must be >= 0 m"))
+
+
+@pytest.mark.parametrize(("edit", "field", "units_text"), [
+    (lambda d: d["buildings"][0]["storeys"][0].update(stiffness=1e-300), "buildings.1.storeys.1.stiffness", "kgf*s^2/cm"),
+    (lambda d: d["contact"].update(stiffness=1e-300), "contact.stiffness", "kgf/cm^1.5"),
+    (lambda d: d["contact"].update(stiffness=1e300), "contact.stiffness", "kgf/cm^1.5"),
+])
+def test_a_floor_mass_or_contact_stiffness_beyond_any_building_is_refused_in_the_files_units(edit, field, units_text, capsys):
+    """Issue 33: a storey stiffness of 1e-300 (a floor of 4e-302 kg) printed 0.00 kN beside '2.5e+121 times the
+    floor weight', a contact stiffness of 1e-300 a penetration of 6e+120 sigma, both with exit 0. They are refused,
+    naming the key and the range in the units the file is written in; the preset's own values are taken."""
+    from pounding.presets import preset_text
+
+    data = tomllib.loads(preset_text("section5-T2-0.4"))
+    case_from_dict(copy.deepcopy(data))
+    edit(data)
+    with pytest.raises(CaseError) as caught:
+        case_from_dict(data)
+    assert caught.value.field == field and units_text in caught.value.message and "must lie in" in caught.value.message
+    assert len(str(caught.value)) <= 200

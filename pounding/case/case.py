@@ -186,12 +186,24 @@ def _storey(table, units: UnitSystem, where: str, single: bool) -> Storey:
         if period <= 0:
             raise CaseError(f"{where}.period", f"must be > 0 s, got {period:g} s")
         mass, stiffness = _from_period(where, period, mass, stiffness)
+    _check_floor_mass(where, mass, units, "mass" if "mass" in table else "stiffness")
     damping = quantity(table, "damping", where, units, strict=False, force=1, length=-1, time=1) if "damping" in table else None
     if "hysteresis" in table:
         bouc_wen = _hysteresis(table["hysteresis"], units, f"{where}.hysteresis", stiffness)
     else:
         bouc_wen = _bouc_wen(table.get("bouc_wen", {"alpha": 1.0}), units, f"{where}.bouc_wen")
     return build(where, Storey, mass, stiffness, bouc_wen, damping)
+
+
+def _check_floor_mass(where: str, mass: float, units: UnitSystem, key: str) -> None:
+    """Refuse a floor mass [kg] outside :data:`~pounding.defaults.FLOOR_MASS_RANGE`, naming ``key`` (the mass, or the
+    stiffness it came from with the period) and the range in the file's units."""
+    low, high = defaults.FLOOR_MASS_RANGE
+    if not low <= mass <= high:
+        label = units.mass_label
+        given = "" if key == "mass" else f" gives a floor mass of {units.from_si(mass, mass=1):.3g} {label}, which"
+        raise CaseError(f"{where}.{key}", f"{given} must lie in [{units.from_si(low, mass=1):.3g}, "
+                                          f"{units.from_si(high, mass=1):.3g}] {label} (a model's floor to ten million tonnes)".lstrip())
 
 
 def _building(table, units: UnitSystem, where: str) -> Building:
@@ -219,11 +231,23 @@ def _contact(table, units: UnitSystem) -> Contact:
         where,
         Contact,
         gap=quantity(table, "gap", where, units, strict=False, length=1),
-        stiffness=quantity(table, "stiffness", where, units, strict=True, force=1, length=-exponent),
+        stiffness=_contact_stiffness(table, units, where, exponent),
         restitution=number(table, "restitution", where, 0.65),
         levels=levels,
         model=model,
     )
+
+
+def _contact_stiffness(table, units: UnitSystem, where: str, exponent: float) -> float:
+    """The contact stiffness [SI], refused outside :data:`~pounding.defaults.CONTACT_STIFFNESS_RANGE` in the file's units."""
+    stiffness = quantity(table, "stiffness", where, units, strict=True, force=1, length=-exponent)
+    low, high = defaults.CONTACT_STIFFNESS_RANGE
+    if not low <= stiffness <= high:
+        label = units.label(force=1, length=-exponent)
+        raise CaseError(f"{where}.stiffness", f"must lie in [{units.from_si(low, force=1, length=-exponent):.3g}, "
+                                               f"{units.from_si(high, force=1, length=-exponent):.3g}] {label}; got "
+                                               f"{units.from_si(stiffness, force=1, length=-exponent):.3g}")
+    return stiffness
 
 
 def _text(data, key: str, default: str) -> str:
