@@ -290,6 +290,9 @@ class PoundingDashboard(pn.viewable.Viewer):
         if m.snapshot is None:
             return None
         snapshot = replace(m.snapshot, monte_carlo=m.monte_carlo_points(), design_gap=m.current_design_gap())
+        check = m.current_check()  # the page's own check of this very estimate: the report takes it, not a second run
+        if check is not None and snapshot.estimate is m.result:
+            snapshot = replace(snapshot, check=check)
         for old in self._exports:  # the browser has the report before: one at a time on the disk
             remove(old)
         folder = new_folder("pounding-report-")

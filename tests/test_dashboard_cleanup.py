@@ -71,7 +71,7 @@ def test_a_closed_sessions_files_go_and_the_server_leaves_nothing(browser, tmp_p
     temporary = tmp_path / "tmp"
     temporary.mkdir()
     command = [sys.executable, "-m", "panel", "serve", str(ROOT / "dashboard" / "app.py"), "--port", "0",
-               "--check-unused-sessions", "500", "--unused-session-lifetime", "500"]
+               "--check-unused-sessions", "1000", "--unused-session-lifetime", "5000"]
     process, url, log = _start(command, temporary)
     try:
         context = _upload_and_export(browser, url, tmp_path)

@@ -138,18 +138,25 @@ def test_simulate_prints_its_monte_carlo_whatever_the_closed_form_raises(tmp_pat
 @pytest.mark.parametrize(
     "change, key",
     [
-        (("  period = 1.2\n  stiffness = 1097.0", "  mass = 1e300\n  stiffness = 1097.0", 1), "buildings.1.storeys.1"),
-        (("  period = 1.2\n  stiffness = 1097.0", "  mass = 40.0\n  stiffness = 1e-300", 1), "buildings.1.storeys.1"),
+        (("  period = 1.2\n  stiffness = 1097.0", "  mass = 1e300\n  stiffness = 1097.0", 1), "error: buildings.1.storeys.1.mass"),
+        # a floor of 40 kgf s^2/cm is a building's: its frequency sqrt(1e-300 / 40) is what the closed form refuses
+        (("  period = 1.2\n  stiffness = 1097.0", "  mass = 40.0\n  stiffness = 1e-300", 1), "failed: buildings.1.storeys.1"),
     ],
     ids=["mass 1e300", "storey stiffness 1e-300"],
 )
 def test_frequencies_beyond_double_precision_end_in_one_line(tmp_path, capsys, change, key):
+    """A case file's floor beyond any building (mass 1e300) is refused at load, naming the key
+    (defaults.FLOOR_MASS_RANGE); a storey of 1e-300 stiffness under a building's floor, and a floor of 1e300 built in
+    Python, end in the closed form's reason (the storey frequency beyond double precision) instead of a number."""
     path = variant(tmp_path, change)
-    with pytest.raises(ConvergenceError, match=re.escape(key)):
-        estimate(load_case(path))
     status, out, err = run(capsys, "estimate", path)
-    assert status == 1 and out == ""
-    assert one_line(err).startswith(f"pounding estimate: failed: {key}")
+    assert status == (2 if key.startswith("error") else 1) and out == ""
+    assert one_line(err).startswith(f"pounding estimate: {key}")
+    case = load_case(PRESET)
+    storey = dataclasses.replace(case.buildings[0].storeys[0], mass=1e300)
+    building = dataclasses.replace(case.buildings[0], storeys=(storey,))
+    with pytest.raises(ConvergenceError, match=re.escape("buildings.1.storeys.1")):
+        estimate(dataclasses.replace(case, buildings=(building, case.buildings[1])))
 
 
 @pytest.mark.parametrize("command", ["estimate", "simulate"])
@@ -167,8 +174,8 @@ def test_a_ground_filter_beyond_any_ground_motion_is_refused_in_one_line(tmp_pat
 def test_frequencies_beyond_double_precision_no_traceback_as_a_user_runs_it(tmp_path):
     path = variant(tmp_path, ("  period = 1.2\n  stiffness = 1097.0", "  mass = 1e300\n  stiffness = 1097.0", 1))
     out = subprocess.run([sys.executable, "-m", "pounding", "estimate", path], capture_output=True, text=True, timeout=120)
-    assert out.returncode == 1
-    assert "sqrt(stiffness / mass)" in one_line(out.stderr)
+    assert out.returncode == 2
+    assert "buildings.1.storeys.1.mass" in one_line(out.stderr) and "must lie in" in out.stderr
 
 
 # --- absurd results -----------------------------------------------------------------------------------------
@@ -202,21 +209,32 @@ def test_a_gap_nothing_reaches_brakes_no_impact(tmp_path, capsys):
     no_long_numbers(out)
 
 
+def _with_contact_stiffness(stiffness: float, duration: float | None = None):
+    """The preset with a contact stiffness [SI] outside what a case file takes (defaults.CONTACT_STIFFNESS_RANGE),
+    as a Python user can still build it."""
+    case = load_case(PRESET)
+    if duration is not None:
+        case = dataclasses.replace(case, excitation=dataclasses.replace(case.excitation, duration=duration))
+    return dataclasses.replace(case, contact=dataclasses.replace(case.contact, stiffness=stiffness))
+
+
 def test_a_force_no_building_takes_is_warned_about(tmp_path, capsys):
-    """Contact stiffness 1e300: a force of 118 digits, printed as an answer."""
+    """Contact stiffness 1e300: a force of 118 digits, printed as an answer. A case file giving it is refused
+    (naming the key and the range); built in Python, the estimate warns."""
     path = variant(tmp_path, ("stiffness = 2.0e5", "stiffness = 1e300", 1))
-    result = estimate(load_case(path))
+    status, out, err = run(capsys, "estimate", path)
+    assert status == 2 and out == "" and one_line(err).startswith("pounding estimate: error: contact.stiffness")
+    result = estimate(_with_contact_stiffness(1e300))
     assert math.isfinite(result.force_expected)
     assert any(w.startswith("The force is") and "lighter colliding floor's weight" in w for w in result.warnings)
-    status, out, err = run(capsys, "estimate", path)
-    assert status == 0 and err == ""
-    assert "warning: The force is" in out
-    no_long_numbers(out)
 
 
 def test_a_contact_too_soft_for_impacts_is_warned_about(tmp_path, capsys):
-    """Contact stiffness 1e-300: simulate printed the closed form's error as +3398234509702533398700411060224.0 %."""
-    path = variant(tmp_path, ("stiffness = 2.0e5", "stiffness = 1e-300", 1), duration=4.0)
+    """Contact stiffness 1e-300: simulate printed the closed form's error as +3398234509702533398700411060224.0 %.
+    Now refused in a case file; the softest a case file takes (0.2 kgf/cm^1.5, 2e3 N/m^1.5) still penetrates
+    far beyond a short shock and is warned about, by estimate and simulate."""
+    assert any(w.startswith("The contact is soft") for w in estimate(_with_contact_stiffness(1e-300, 4.0)).warnings)
+    path = variant(tmp_path, ("stiffness = 2.0e5", "stiffness = 0.2", 1), duration=4.0)
     result = estimate(load_case(path))
     assert any(w.startswith("The contact is soft") for w in result.warnings)
     status, out, err = run(capsys, "simulate", path, "--records", "2")
@@ -296,13 +314,9 @@ def test_a_cutoff_below_the_buildings_still_answers_in_finite_numbers(tmp_path, 
 
 
 def test_every_extreme_warning_is_at_most_200_characters(tmp_path):
-    cases = [
-        cutoff_variant(tmp_path, 0.503),
-        variant(tmp_path, ("stiffness = 2.0e5", "stiffness = 1e300", 1), name="stiff"),
-        variant(tmp_path, ("stiffness = 2.0e5", "stiffness = 1e-300", 1), name="soft"),
-    ]
-    for path in cases:
-        warnings = estimate(load_case(path)).warnings
+    cases = [load_case(cutoff_variant(tmp_path, 0.503)), _with_contact_stiffness(1e300), _with_contact_stiffness(1e-300)]
+    for case in cases:
+        warnings = estimate(case).warnings
         assert warnings
         for warning in warnings:
             assert len(warning) <= 200, warning
