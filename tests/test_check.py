@@ -49,7 +49,7 @@ CASES = _cases()
 
 @pytest.fixture(scope="module")
 def checked() -> dict:
-    """Each case's estimate and its check without a count (seed 0), computed once."""
+    """Each case's estimate and its check without a count (the default seed), computed once."""
     found = {}
     for label, case in CASES.items():
         result = estimate(case)
@@ -203,7 +203,7 @@ def test_estimate_check_prints_the_verdict_after_the_closed_form(capsys):
     assert main(["estimate", "section5-T2-0.4", "--check", "20"]) == 0
     lines = capsys.readouterr().out.splitlines()
     force, gap = lines[-2:]
-    assert force.startswith("Monte Carlo check (20 records, seed 0): ") and len(force) <= 200
+    assert force.startswith(f"Monte Carlo check (20 records, seed {defaults.SEED}): ") and len(force) <= 200
     assert _unitless(force) == [] and force.count(" MN") >= 4 and ("agrees" in force or "does not agree" in force)
     assert gap.startswith("Monte Carlo gap for 95 % no pounding") and _unitless(gap) == [] and gap.count(" cm") >= 2
     assert main(["estimate", "section5-T2-0.4"]) == 0

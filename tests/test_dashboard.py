@@ -183,7 +183,7 @@ def _agreeing(check) -> str:
 def test_the_headline_is_checked_against_simulated_records_and_a_new_gap_gets_its_own_verdict(dashboard):
     """The verdict comes by itself under the numbers: the library's check of the case on the page's seed; after a
     new gap, the old verdict goes at once and the new gap's comes."""
-    check = check_estimate(estimate(load_case(DEFAULT)), seed=defaults.REPORT_SEED)
+    check = check_estimate(estimate(load_case(DEFAULT)), seed=defaults.SEED)
     assert check.agrees
     _wait_text(dashboard, ".check-verdict", _agreeing(check), timeout=60_000)
     verdict, force = dashboard.locator(".check-verdict").bounding_box(), dashboard.locator(".fe-recommended").bounding_box()
@@ -193,7 +193,7 @@ def test_the_headline_is_checked_against_simulated_records_and_a_new_gap_gets_it
     data = tomllib.loads(preset_text(DEFAULT))
     data["contact"]["gap"] = 2.0
     result = estimate(case_from_dict(data))
-    new = check_estimate(result, seed=defaults.REPORT_SEED)
+    new = check_estimate(result, seed=defaults.SEED)
     assert new.force_max_mean != check.force_max_mean
     _wait_text(dashboard, ".check-verdict", _agreeing(new), timeout=60_000)
     _wait_text(dashboard, ".fe-recommended", _shown(result.force_expected))

@@ -42,12 +42,12 @@ def _verdict(page: str) -> str:
 def test_the_report_carries_the_verdict_of_a_check_of_the_same_case_and_seed(tmp_path):
     case = load_case(SECTION5)
     page = write_report(tmp_path / "r.html", compute_snapshot(case)).read_text()
-    check = check_estimate(estimate(case), seed=defaults.REPORT_SEED)  # the same check, called directly
+    check = check_estimate(estimate(case), seed=defaults.SEED)  # the same check, called directly
     shown = display("SI")
     force_sentence, gap_sentence = check.sentences(shown.force, shown.length)
     verdict = _verdict(page)
     assert force_sentence in verdict and gap_sentence in verdict
-    assert f"Monte Carlo check ({check.records} records, seed {defaults.REPORT_SEED}): {shown.force(check.force_max_mean)}" in verdict
+    assert f"Monte Carlo check ({check.records} records, seed {defaults.SEED}): {shown.force(check.force_max_mean)}" in verdict
     assert check.agrees and _span(page, "force-answer") == shown.force(check.force_answer) == shown.force(check.closed_form_force)
     assert _span(page, "answer-source") == "the closed form, which agrees with the Monte Carlo check"
     assert _span(page, "gap-answer") == shown.length(check.gap_answer) and shown.length(check.gap_answer).endswith(" mm")
@@ -66,7 +66,7 @@ def test_where_the_closed_form_is_known_to_be_off_the_report_stands_behind_the_m
     s5 = varied_case(load_case(SECTION5), elastic=True, periods=(1.2, 0.8))
     case = varied_case(s5, gap=1.5 * estimate(s5).sigma_relative_displacement, name="elastic 1.2/0.8 at 1.5 sigma_X")
     page = write_report(tmp_path / "off.html", compute_snapshot(case), "kgf-cm-s").read_text()
-    check = check_estimate(estimate(case), seed=defaults.REPORT_SEED)
+    check = check_estimate(estimate(case), seed=defaults.SEED)
     shown = display("kgf-cm-s")
     assert not check.agrees and check.error < -0.2
     assert _span(page, "force-answer") == shown.force(check.force_max_mean) != shown.force(check.closed_form_force)

@@ -193,8 +193,8 @@ def parser() -> argparse.ArgumentParser:
                         help="Monte Carlo records of the check, shown in the figures too (default 0: the check runs as "
                         f"many as its precision asks, {defaults.CHECK_FIRST_RECORDS} to {defaults.CHECK_MAX_RECORDS}; "
                         "recorded motions: each once)")
-    report.add_argument("--seed", type=_non_negative_int, default=defaults.REPORT_SEED,
-                        help=f"seed of the Monte Carlo check and studies (default {defaults.REPORT_SEED})")
+    report.add_argument("--seed", type=_non_negative_int, default=defaults.SEED,
+                        help=f"seed of the Monte Carlo check and studies (default {defaults.SEED})")
     report.add_argument("--gap-points", type=whole_number_type(0), default=0, metavar="N",
                         help="also Monte Carlo points at N gaps across the force-against-gap figure, --records each "
                         "(needed), the same seed (default 0: none)")

@@ -32,7 +32,7 @@ def with_check(snapshot: Snapshot, progress: Callable[[int, int], None] | None =
     """The snapshot with its verdict (``snapshot.check``): as given; else :func:`~pounding.studies.check.check_estimate`
     of its estimate on the records of the matching study (:func:`matching_study`: its count and seed, so the numbers
     are the study's); else on as many records as the check's precision asks, seeded as the snapshot
-    (``defaults.REPORT_SEED`` unless given). ``progress(done, total)`` counts the check's records.
+    (``defaults.SEED`` unless given). ``progress(done, total)`` counts the check's records.
 
     Raises ValueError where the given check is of another estimate (another force or target probability)."""
     check = snapshot.check
