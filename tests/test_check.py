@@ -169,7 +169,7 @@ def test_a_wider_spread_of_the_records_takes_their_fractiles():
 def _unitless(text: str) -> list[str]:
     """The numbers of ``text`` with no unit after them, the study's "(N records, seed S)" aside."""
     text = re.sub(r"\(\d+ records?, seed \d+\)", "", text)
-    numbers = re.finditer(r"(\d[\d,]*(?:\.\d+)?)( ?(?:MN|kN|kgf|cm|%))?", text)
+    numbers = re.finditer(r"(\d[\d,]*(?:\.\d+)?)( ?(?:MN|kN|kgf|mm|cm|%))?", text)
     return [m.group(1) for m in numbers if m.group(2) is None]
 
 
@@ -204,8 +204,8 @@ def test_estimate_check_prints_the_verdict_after_the_closed_form(capsys):
     lines = capsys.readouterr().out.splitlines()
     force, gap = lines[-2:]
     assert force.startswith(f"Monte Carlo check (20 records, seed {defaults.SEED}): ") and len(force) <= 200
-    assert _unitless(force) == [] and force.count(" MN") >= 4 and ("agrees" in force or "does not agree" in force)
-    assert gap.startswith("Monte Carlo gap for 95 % no pounding") and _unitless(gap) == [] and gap.count(" cm") >= 2
+    assert _unitless(force) == [] and force.count(" kN") >= 4 and ("agrees" in force or "does not agree" in force)
+    assert gap.startswith("Monte Carlo gap for 95 % no pounding") and _unitless(gap) == [] and gap.count(" mm") >= 2
     assert main(["estimate", "section5-T2-0.4"]) == 0
     assert "Monte Carlo check" not in capsys.readouterr().out  # without --check: the closed form alone
 
