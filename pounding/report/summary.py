@@ -102,7 +102,7 @@ def summary_rows(snapshot: Snapshot, units: str = "SI") -> list[tuple[str, str, 
          f"during the {duration:g} s record, at the gap of {d.length(case.contact.gap)}"),
         (f"gap needed for {100 * e.target_probability:g} % probability of no pounding", d.length(e.required_gap),
          f"closed form; SRSS rule {d.length(e.separation_rules['srss'])}, ABS {d.length(e.separation_rules['abs'])}"),
-        ("paper's F_e (Eq. 14)", d.force(e.paper.force_expected), "for comparison: independent of the gap"),
+        ("paper's F_e (Rahimi & Soltani 2016)", d.force(e.paper.force_expected), "for comparison: independent of the gap"),
     ]
     check = snapshot.check
     if check is None:
