@@ -186,9 +186,9 @@ def _estimate(args) -> int:
     linearized = result.response
     for line in engineering_lines(engineering_terms(case), shown):
         print(line)
-    print(f"relative displacement       {length(result.sigma_relative_displacement)} standard deviation   "
-          f"(linearized {length(linearized.sigma_relative_displacement)}, plus the residual's response)")
-    print(f"relative velocity           {velocity(result.sigma_relative_velocity)} standard deviation   "
+    print(f"RMS relative displacement   {length(result.sigma_relative_displacement)}   "
+          f"(linearized {length(linearized.sigma_relative_displacement)}, plus the yielding the linearization leaves out)")
+    print(f"RMS relative velocity       {velocity(result.sigma_relative_velocity)}   "
           f"(linearized {velocity(linearized.sigma_relative_velocity)})")
     print("recommended (gap-aware)")
     print(f"  expected extreme force    {force_text(result.force_expected)}")
@@ -202,8 +202,8 @@ def _estimate(args) -> int:
     print("  force braking an impact   " + (f"{force_text(result.opposing_force)}   (the buildings' own, at the gap)"
                                               if result.impacts_expected > 0.0 else "n/a (no impact expected at this gap)"))
     dashpot = f"{shown.from_si(result.impact_dashpot, force=1, length=-1, time=1):.4g} {shown.label(force=1, length=-1, time=1)}"
-    print(f"  impacts' damping          {100 * (1 - result.impacting_velocity_ratio):.1f} % off the relative velocity's standard "
-          f"deviation before an approach, as a dashpot of {dashpot} between the floors")
+    print(f"  impacts' damping          {100 * (1 - result.impacting_velocity_ratio):.1f} % off the RMS relative velocity before "
+          f"an approach, as a dashpot of {dashpot} between the floors")
     print(f"  pounding probability      {100 * result.pounding_probability:.1f} %")
     print(f"  gap for {100 * result.target_probability:g} % no pounding  {length(result.required_gap)}"
           f"   (SRSS {length(rules['srss'])}, ABS {length(rules['abs'])}, DDC {length(rules['ddc'])})")
@@ -220,7 +220,7 @@ def _estimate(args) -> int:
         print(f"  expected extreme velocity {velocity(paper.relative_velocity_expected)}   (peak factor {paper.peak_factor:.3f})")
     print(f"  crossing rate             {paper.crossing_rate:.4f} 1/s, effective duration {paper.duration_effective:.2f} s")
     if paper.michaelov_n1 is not None:
-        print(f"  equivalent velocity       {velocity(paper.sigma_relative_velocity_equivalent)} standard deviation   "
+        print(f"  equivalent RMS velocity   {velocity(paper.sigma_relative_velocity_equivalent)}   "
               f"(stationary equivalent of order {paper.michaelov_n1:g}, variance in time by {args.paper_variance})")
     for warning in result.warnings:
         print(f"warning: {warning}")
