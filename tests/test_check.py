@@ -57,6 +57,7 @@ def checked() -> dict:
     return found
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("label", ["elastic rare, off", "frames rare, off"])
 def test_a_closed_form_known_to_be_off_is_flagged(checked, label):
     result, check = checked[label]
@@ -67,12 +68,14 @@ def test_a_closed_form_known_to_be_off_is_flagged(checked, label):
     assert not low <= result.force_expected <= high
 
 
+@pytest.mark.slow
 def test_a_closed_form_known_to_be_right_is_not_flagged(checked):
     result, check = checked["frequent"]
     assert abs(check.error) < 0.05, check
     assert check.agrees and check.answer_source == "closed form" and check.force_answer == result.force_expected
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("label", ["frequent", "elastic rare, off", "yielding rare"])
 def test_the_force_the_tool_stands_behind_is_within_10_percent_of_2000_records(checked, label):
     _, check = checked[label]
@@ -80,6 +83,7 @@ def test_the_force_the_tool_stands_behind_is_within_10_percent_of_2000_records(c
     assert check.force_answer == pytest.approx(reference.force_max_mean, rel=0.10), (check, reference.force_max_mean)
 
 
+@pytest.mark.slow
 def test_without_a_count_the_records_run_until_the_mean_is_known_within_5_percent(checked):
     _, check = checked["frequent"]
     low, high = check.force_max_confidence_interval
@@ -92,11 +96,13 @@ def test_without_a_count_the_records_run_until_the_mean_is_known_within_5_percen
                                          for key in defaults.FORCE_QUANTILES}
 
 
+@pytest.mark.slow
 def test_rare_pounding_runs_the_most_records(checked):
     _, check = checked["frames rare, off"]
     assert check.records == defaults.CHECK_MAX_RECORDS and 0.0 < check.pounding_fraction < 0.5
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("label", ["frequent", "frames rare, off"])
 def test_the_records_gap_is_the_monte_carlo_design_gap_of_the_same_records(checked, label):
     result, check = checked[label]
@@ -139,6 +145,7 @@ def test_bad_arguments_are_refused_by_name():
         check_estimate(estimate("section5-T2-0.4"), 5, seed=-1)
 
 
+@pytest.mark.slow
 def test_the_fractiles_come_from_the_records_where_the_closed_form_is_off_or_narrower(checked):
     """The fractiles the tool stands behind: the closed form's where it agrees (Section 5, frequent), the records'
     where it does not (the elastic pair at 1.5 sigma_X), each equal to its source's own numbers."""

@@ -40,6 +40,7 @@ def test_simulate_json_matches_the_library():
     assert data["closed_form"]["accuracy_regime"] == closed_form.accuracy_regime
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("preset", ["section5-T2-0.4", "section5-T2-0.4-nonstationary"])
 def test_estimate_json_is_the_documented_contract_in_si(preset):
     """The keys the issue and README promise, each the library's number in SI;
@@ -62,6 +63,7 @@ def test_estimate_json_is_the_documented_contract_in_si(preset):
         assert equivalent < data["sigma_relative_velocity"]  # the envelope only lowers sigma_inf
 
 
+@pytest.mark.slow
 def test_validate_prints_the_papers_tables_beside_both_estimators_and_its_assumptions():
     """Tables 1, 2, 5, 6 under both readings of the excitation: the paper's two
     columns as printed in it, this project's Monte Carlo and both estimators,
@@ -89,6 +91,7 @@ def test_validate_prints_the_papers_tables_beside_both_estimators_and_its_assump
     assert READINGS_MEASURED in out.stdout
 
 
+@pytest.mark.slow
 def test_simulate_table_puts_the_closed_form_beside_with_its_error():
     """The printed error is the printed force over the study's mean, and the error against the ends of the
     95 % CI brackets it; the force is the library's."""
@@ -105,6 +108,7 @@ def test_simulate_table_puts_the_closed_form_beside_with_its_error():
     assert f"accuracy      {estimate(load_case('section5-T2-0.4')).measured_accuracy}" in out.stdout
 
 
+@pytest.mark.slow
 def test_simulate_table_has_units():
     out = run("simulate", "section5-T2-0.8", "--records", "4")
     assert out.returncode == 0
@@ -166,6 +170,7 @@ def test_command_line_imports_no_plotting_library():
     assert "HEAVY []" in out.stderr
 
 
+@pytest.mark.slow
 def test_report_is_written_and_described(tmp_path):
     path = tmp_path / "report.html"
     out = run("report", "section5-T2-0.8", "-o", str(path), "--json")
@@ -178,6 +183,7 @@ def test_report_is_written_and_described(tmp_path):
     assert not list(tmp_path.glob(".*.tmp"))
 
 
+@pytest.mark.slow
 def test_report_carries_the_monte_carlo_design_gap_beside_the_closed_form(tmp_path):
     path = tmp_path / "report.html"
     out = run("report", "section5-T2-0.8", "-o", str(path), "--records", "12", "--seed", "3", "--design-gap", "0.9", "--json")
@@ -191,6 +197,7 @@ def test_report_carries_the_monte_carlo_design_gap_beside_the_closed_form(tmp_pa
     assert "Monte Carlo gap for 90 % no pounding" in text and "it needs 22" in text  # 0.9^22 < 0.1 < 0.9^21
 
 
+@pytest.mark.slow
 def test_killed_report_leaves_no_file(tmp_path):
     """Killed while it works (here in its Monte Carlo), a report run leaves
     neither the report nor a partial file behind."""
@@ -207,6 +214,7 @@ def test_killed_report_leaves_no_file(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.slow
 def test_help_has_examples():
     for args in (("--help",), ("simulate", "--help"), ("cases", "--help"), ("dashboard", "--help"), ("estimate", "--help"),
                  ("validate", "--help"), ("report", "--help"), ("sweep", "--help")):

@@ -85,6 +85,7 @@ def _shown_verdicts(model: PoundingModel) -> list:
     return shown
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("ignore_cancel", [False, True], ids=["stops when cancelled", "ends anyway"])
 def test_a_new_gap_cancels_the_check_running_and_the_verdict_is_of_the_new_gap(monkeypatch, ignore_cancel):
     checks = _Checks(hold=True, ignore_cancel=ignore_cancel)
@@ -144,6 +145,7 @@ def test_the_check_is_the_librarys_on_the_pages_seed_and_its_verdict_is_under_th
     assert model.current_check() is None
 
 
+@pytest.mark.slow
 def test_typing_starts_one_check_not_one_a_keystroke(monkeypatch):
     checks = _Checks()
     monkeypatch.setattr(studies, "check_estimate", checks)

@@ -234,6 +234,7 @@ def _stated_range(text):
     return int(low) / 100, int(high) / 100
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("regime, family, count", [("frequent", "SDOF", 4), ("moderate gap", "SDOF", 2), ("narrow band", "elastic", 2)])
 def test_stated_range_holds_on_cases_drawn_afresh(regime, family, count):
     """The range stated for each regime was measured on the grid and on random
@@ -268,6 +269,7 @@ def test_impacts_expected_tracks_the_simulated_count_when_pounding_is_frequent()
     assert np.isfinite(result.required_gap) and result.required_gap > case.contact.gap
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("periods", [(1.2, 0.8), (1.2, 0.4)])
 def test_required_gap_is_on_the_safe_side_for_elastic_pairs(periods):
     """At the gap given for 95 % probability of no pounding, the simulated
@@ -368,6 +370,7 @@ def test_accuracy_rows_say_where_the_closed_form_refuses():
     assert row.recommended is None and row.recommended_error is None and row.monte_carlo > 0.0
 
 
+@pytest.mark.slow
 def test_design_gap_statement_follows_whether_the_floors_move_together():
     """The closed-form gap for 95 % was measured safe for one-storey yielding pairs whose contact floors move
     less together (correlation of x1, x2 below MOVING_TOGETHER: at most 0.072 of records pounding, mean 0.035) and

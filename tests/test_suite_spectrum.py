@@ -170,6 +170,7 @@ def test_a_recorded_case_takes_the_bank_and_its_json_carries_the_fit_quality(tmp
     assert (quality["warning"] in out["warnings"]) == bool(quality["warning"])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("low_passed", [False, True])
 def test_the_closed_form_follows_the_monte_carlo_over_the_same_records(low_passed):
     """section5-T2-0.4 over 200 records: E[F_max] of the closed form on the suite's bank within 12 % of the
