@@ -114,5 +114,6 @@ def test_every_printed_force_length_and_velocity_is_in_the_chosen_units(command,
              {m.group(1) for m in _VELOCITY.finditer(out)})
     assert found[0] <= forces and found[1] <= lengths and found[2] <= velocities, out
     assert found[0] or found[1] or command[0] == "sweep", out  # something was checked
+    assert "docs/" not in out and ".md" not in out, out  # a wheel's user has no docs/ (simulate --design-gap pointed there)
     if command[0] == "sweep":  # its forces are a column: the unit is in the header
         assert f"forces in {next(iter(forces))}" in out
