@@ -43,7 +43,7 @@ HEADLINE_CSS = """
 """
 
 _ADVICE = (
-    ("Check it with `pounding simulate`.", "Check it with the Monte Carlo tab.", "monte_carlo"),
+    ("Check it with `pounding estimate --check`.", "Check it with the Monte Carlo tab.", "monte_carlo"),
     ("Use `pounding simulate --design-gap", "Use the Monte Carlo design gap (Monte Carlo tab).", "design_gap"),
 )
 

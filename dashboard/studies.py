@@ -13,7 +13,7 @@ import param
 
 from dashboard.jobs import StudyJob, check_pool
 from pounding import defaults, simulate
-from pounding.report import DEFAULT_SEED, MonteCarloPoint
+from pounding.report import MonteCarloPoint
 from pounding.simulation.monte_carlo import Cancelled, DesignGap, design_gap
 from pounding.simulation.plan import MonteCarloPlan
 from pounding.simulation.system import Settings
@@ -43,7 +43,7 @@ class Studies(param.Parameterized):
     records = param.Integer(defaults.DASHBOARD_RECORDS, bounds=(1, MAX_STUDY_RECORDS), label="records",
                             doc="Records of the Monte Carlo study and of the Monte Carlo design gap (recorded motions: "
                             "each of them once, whatever this says).")
-    seed = param.Integer(DEFAULT_SEED, bounds=(0, None), label="seed", doc="Seed of the records (the same seed, the same records).")
+    seed = param.Integer(defaults.SEED, bounds=(0, None), label="seed", doc="Seed of the records (the same seed, the same records).")
 
     monte_carlo_job = param.ClassSelector(class_=StudyJob, precedence=-1, doc="The reduced-sample Monte Carlo of the current "
                                           "case: its result the MonteCarloPoint of each gap run (a tuple), or None.")

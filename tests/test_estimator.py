@@ -199,6 +199,7 @@ def test_bad_gaps_are_named():
         force_versus_gap(load_case("section5-T2-0.4"), [0.01, -0.01])
 
 
+@pytest.mark.slow
 def test_every_number_is_finite_and_in_range_over_the_claimed_ranges_and_beyond():
     """100 cases drawn from the ranges the estimator claims (every kind of pair,
     stationary and modulated), each also pushed beyond them, to gap 0 and 50 cm
@@ -253,6 +254,7 @@ def test_no_relative_motion_is_named_not_divided_by():
     assert estimate(varied_case(base, elastic=True, periods=(0.5, 0.51))).force_expected > 0.0  # nearly alike is fine
 
 
+@pytest.mark.slow
 def test_every_warning_and_accuracy_statement_is_short():
     """Each warning and the measured accuracy are one or two short sentences,
     at most 200 characters: on every preset, on each at a moderate and at a
@@ -262,8 +264,8 @@ def test_every_warning_and_accuracy_statement_is_short():
     from pounding import preset_names
     from pounding.hazard.excitation import CloughPenzien
 
-    kinds = {"The relative motion is narrow-band", "Storeys near elastic-perfectly plastic", "The gap lies between",
-             "Pounding is rare at this gap", "The gap for 95 %", "A building yields and the spectrum"}
+    kinds = {"The buildings sway at nearly one frequency", "Storeys near elastic-perfectly plastic", "The gap is 0.5 to 1 times",
+             "Only the largest swings close this gap", "The gap for 95 %", "A building yields and the spectrum"}
     seen = set()
     for name in preset_names():
         pair = LinearizedPair.of(load_case(name))

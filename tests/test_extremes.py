@@ -277,7 +277,7 @@ def test_a_cutoff_below_the_motion_cuts_the_estimate_and_warns(tmp_path):
     assert cut.force_expected == pytest.approx(263.0e3, rel=0.01)
     assert cut.sigma_relative_velocity < 0.9 * default.sigma_relative_velocity
     (warning,) = [w for w in cut.warnings if w.startswith("The records stop at 10 rad/s")]
-    assert "24 % of sigma_V^2" in warning and len(warning) <= 200
+    assert "24 % of the relative velocity's power" in warning and len(warning) <= 200
     high = estimate(load_case(cutoff_variant(tmp_path, 60)))
     assert high.force_expected == pytest.approx(default.force_expected, rel=1e-5)
     for result in (default, high):

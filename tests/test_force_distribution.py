@@ -24,6 +24,7 @@ def frequent_grid_errors():
     return errors
 
 
+@pytest.mark.slow
 def test_closed_form_fractiles_on_the_frequent_grid_cases(frequent_grid_errors):
     """The median and the 84th percentile within 10 % of 500 records' on 14 of the 16 frequent-pounding cases and within
     15 % on all: the two outside inherit the error of the mean (docs/accuracy.md, "The distribution of F_max")."""

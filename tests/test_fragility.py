@@ -141,6 +141,7 @@ def test_lognormal_fit_recovers_a_known_curve():
     assert fit_lognormal(pga, np.zeros(15), 200) is None and fit_lognormal(pga, np.full(15, 200), 200) is None
 
 
+@pytest.mark.slow
 def test_serial_and_two_dask_workers_give_the_same_counts_and_a_rerun_resumes(tmp_path):
     pga = np.array([0.3, 0.45]) * G
     serial = fragility_curve(SECTION5, 3.0e5, pga, MonteCarloPlan(12, 4, tmp_path / "a", "serial"))

@@ -178,6 +178,7 @@ def _check(code: int, out: str, err: str) -> None:
         assert ": error: " in lines[0] or ": failed: " in lines[0], err
 
 
+@pytest.mark.slow
 @FUZZ
 @given(content=mutated_case())
 def test_a_mutated_case_file_is_estimated_or_refused_in_one_line(tmp_path_factory, content):
@@ -276,6 +277,7 @@ def test_a_mutated_command_line_runs_or_is_refused_in_one_line(option, value):
         assert option in lines[0] or (value and value in lines[0]) or code == 1, err
 
 
+@pytest.mark.slow
 @pytest.mark.timeout(300)
 @settings(max_examples=40, deadline=10000, suppress_health_check=[HealthCheck.too_slow], derandomize=True)
 @given(content=mutated_case())

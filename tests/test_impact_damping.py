@@ -74,6 +74,7 @@ def test_the_dashpot_divides_the_spectrum_as_the_state_space_with_a_dashpot_says
     assert damping.with_dashpot(0.0)[2] == pytest.approx(damping.bandwidth, rel=1e-12)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", CASES)
 def test_memory_is_the_jump_response_averaged_over_exponential_intervals(kind):
     """rho against (omega x_J)^2 + v_J^2 of the pair's state space after the

@@ -104,6 +104,7 @@ def _run(path: Path, check: str | None):
     return lesson, elapsed, result
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda path: path.stem)
 def test_notebook_runs(path):
     cells, elapsed, checked = _run(path, CHECKS.get(path.stem))

@@ -116,6 +116,7 @@ def test_a_folder_that_cannot_be_written_ends_in_one_line(command):
     assert result.returncode not in (0, 2) and "/proc/pounding-" in _one_line(result.stderr)
 
 
+@pytest.mark.slow
 def test_a_full_standard_output_ends_in_one_line():
     with open("/dev/full", "w") as full:
         result = _pounding("estimate", PRESET, "--json", stdout=full)
@@ -123,6 +124,7 @@ def test_a_full_standard_output_ends_in_one_line():
     assert "No space left on device" in _one_line(result.stderr)
 
 
+@pytest.mark.slow
 def test_an_error_in_the_middle_of_a_write_leaves_no_temporary_file(tmp_path, monkeypatch, capsys):
     target = tmp_path / "report.html"
     for error, expected in ((OSError(errno.ENOSPC, "No space left on device"), 1), (KeyboardInterrupt(), 130)):
@@ -217,6 +219,7 @@ def _children(pid: int) -> list[int]:
         return [p for p in _group(pid) if p != pid]
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not Path("/proc").is_dir(), reason="reads /proc")
 @pytest.mark.parametrize("ending", [signal.SIGTERM, signal.SIGKILL], ids=["SIGTERM", "SIGKILL"])
 def test_an_ended_dashboard_leaves_no_process_and_frees_the_port(ending):

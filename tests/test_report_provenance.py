@@ -176,6 +176,7 @@ def _visible(text: str) -> str:
     return re.sub(r"\s+", " ", re.sub(r"<[^>]+>", " ", body))
 
 
+@pytest.mark.slow
 def test_the_report_of_a_modified_preset_says_so_and_lists_the_changes(tmp_path):
     after = preset_data()
     after["contact"]["gap"] = 5.0
@@ -194,6 +195,7 @@ def test_the_report_of_a_modified_preset_says_so_and_lists_the_changes(tmp_path)
     assert "pounding dashboard (Export report)" in text
 
 
+@pytest.mark.slow
 def test_the_report_of_an_unmodified_preset_says_no_modification(tmp_path):
     snapshot = compute_snapshot(load_case(PRESET))
     text = _visible(write_report(tmp_path / "r.html", snapshot, provenance=case_provenance(as_dashboard_writes(PRESET), PRESET)).read_text())
@@ -207,6 +209,7 @@ def test_the_report_of_an_unmodified_preset_says_no_modification(tmp_path):
     assert f"modified from preset {PRESET}" in text and "the changes are not listed" in text
 
 
+@pytest.mark.slow
 def test_pounding_report_names_its_source_and_command(tmp_path, capsys):
     case_file = tmp_path / "mine.toml"  # as saved from the dashboard: named after its preset
     case_file.write_text(preset_text(PRESET).replace("restitution = 0.65", "restitution = 0.7"))

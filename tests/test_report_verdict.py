@@ -13,6 +13,7 @@ import re
 from importlib import resources
 
 import numpy as np
+import pytest
 
 from pounding import defaults, load_case, simulate
 from pounding.cli.commands import main
@@ -39,15 +40,16 @@ def _verdict(page: str) -> str:
     return _text(re.search(r'<div class="verdict">(.*?)</div>', page, flags=re.DOTALL).group(1))
 
 
+@pytest.mark.slow
 def test_the_report_carries_the_verdict_of_a_check_of_the_same_case_and_seed(tmp_path):
     case = load_case(SECTION5)
     page = write_report(tmp_path / "r.html", compute_snapshot(case)).read_text()
-    check = check_estimate(estimate(case), seed=defaults.REPORT_SEED)  # the same check, called directly
+    check = check_estimate(estimate(case), seed=defaults.SEED)  # the same check, called directly
     shown = display("SI")
     force_sentence, gap_sentence = check.sentences(shown.force, shown.length)
     verdict = _verdict(page)
     assert force_sentence in verdict and gap_sentence in verdict
-    assert f"Monte Carlo check ({check.records} records, seed {defaults.REPORT_SEED}): {shown.force(check.force_max_mean)}" in verdict
+    assert f"Monte Carlo check ({check.records} records, seed {defaults.SEED}): {shown.force(check.force_max_mean)}" in verdict
     assert check.agrees and _span(page, "force-answer") == shown.force(check.force_answer) == shown.force(check.closed_form_force)
     assert _span(page, "answer-source") == "the closed form, which agrees with the Monte Carlo check"
     assert _span(page, "gap-answer") == shown.length(check.gap_answer) and shown.length(check.gap_answer).endswith(" mm")
@@ -60,13 +62,14 @@ def test_the_report_carries_the_verdict_of_a_check_of_the_same_case_and_seed(tmp
             f"{shown.force(check.force_max_mean)}") in _text(page)
 
 
+@pytest.mark.slow
 def test_where_the_closed_form_is_known_to_be_off_the_report_stands_behind_the_monte_carlo(tmp_path):
     """validation/HISTORY.md's elastic 1.2/0.8 s pair at 1.5 sigma_X: the closed form about a third under the records
     (tests/test_check.py); the report quotes the records' mean, not the closed form."""
     s5 = varied_case(load_case(SECTION5), elastic=True, periods=(1.2, 0.8))
     case = varied_case(s5, gap=1.5 * estimate(s5).sigma_relative_displacement, name="elastic 1.2/0.8 at 1.5 sigma_X")
     page = write_report(tmp_path / "off.html", compute_snapshot(case), "kgf-cm-s").read_text()
-    check = check_estimate(estimate(case), seed=defaults.REPORT_SEED)
+    check = check_estimate(estimate(case), seed=defaults.SEED)
     shown = display("kgf-cm-s")
     assert not check.agrees and check.error < -0.2
     assert _span(page, "force-answer") == shown.force(check.force_max_mean) != shown.force(check.closed_form_force)
@@ -117,6 +120,7 @@ def test_the_force_against_gap_band_is_the_measured_range_of_each_gaps_regime():
     assert not any(r.glyph.__class__.__name__ == "VArea" for r in figures.gap.y_range.renderers)
 
 
+@pytest.mark.slow
 def test_monte_carlo_points_of_the_gap_curve_are_simulate_at_those_gaps(tmp_path):
     case = load_case(SECTION5)
     gaps = curve_gaps(case, estimate(case), 2)
@@ -164,6 +168,7 @@ def test_fragility_and_spectrum_bands_are_each_points_measured_range(tmp_path, c
     assert "closed form, measured accuracy (" in chart.read_text()
 
 
+@pytest.mark.slow
 def test_report_command_checks_on_its_records_and_adds_gap_points(tmp_path, capsys):
     path = tmp_path / "report.html"
     assert main(["report", SECTION5, "-o", str(path), "--records", "12", "--seed", "3", "--gap-points", "2", "--json"]) == 0

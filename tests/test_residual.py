@@ -58,6 +58,7 @@ def test_residual_is_orthogonal_to_the_linear_law_and_its_chaos_carries_its_vari
         assert 0.85 * variance < kept <= 1.001 * variance
 
 
+@pytest.mark.slow
 def test_residual_correlation_against_sampling_at_lags(pair):
     """E[r_j(t) r_k(t + tau)] by the diagram formula against a sample of the
     four jointly Gaussian variables (u'_j, z_j)(t), (u'_k, z_k)(t + tau) with

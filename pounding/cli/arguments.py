@@ -12,7 +12,8 @@ import math
 
 from pounding import defaults
 
-__all__ = ["bounded_number", "increasing_values", "probability", "record_count", "study_size", "tolerance", "whole_number_type"]
+__all__ = ["add_units", "bounded_number", "increasing_values", "probability", "record_count", "study_size", "tolerance",
+           "whole_number_type"]
 
 
 def _shown(text: str) -> str:
@@ -74,6 +75,15 @@ capacity = bounded_number(0.0, 1e15, open_low=True)
 """An argparse type: a capacity [N] > 0 (``--capacity``)."""
 tolerance = bounded_number(1e-12, 1e-2)
 """An argparse type: the integrator's relative tolerance, as ``Settings.tolerance`` allows."""
+
+
+def add_units(parser: argparse.ArgumentParser, what: str) -> None:
+    """``--units``: the unit systems of the library, named as the dashboard's unit switch names them; SI (kN, mm) by
+    default. ``what`` says what they apply to ("the forces and lengths printed")."""
+    from pounding.units import UNIT_SYSTEMS  # light: no numerical library
+
+    parser.add_argument("--units", choices=tuple(UNIT_SYSTEMS), default="SI",
+                        help=f"units of {what}: SI shows kN and mm, kgf-cm-s kgf and cm (default SI); --json is always SI (N, m)")
 
 
 def increasing_values(unit: str, minimum_count: int = 2, maximum: float = math.inf):

@@ -27,17 +27,12 @@ def _cases(_args) -> int:
     return 0
 
 
-def _format_force(newtons: float) -> str:
-    return f"{newtons / 1e6:.4f} MN" if abs(newtons) >= 1e5 else f"{newtons / 1e3:.2f} kN"
-
-
-def _force_text(units: str):
-    """How ``estimate`` and ``simulate`` print a force [N]: kN or MN (SI), or kgf (``--units kgf-cm-s``)."""
-    if units == "SI":
-        return lambda n: _format_force(n) if abs(n) < 1e12 else f"{n / 1e6:.4g} MN"
+def _shown(args):
+    """The display units of ``--units`` (pounding.display_units): kN, mm and m/s by default, kgf, cm and cm/s with
+    ``kgf-cm-s``; every number a command prints goes through them, once."""
     from pounding.display_units import display
 
-    return display(units).force
+    return display(args.units)
 
 
 def _capacity(args) -> float | None:
@@ -67,7 +62,8 @@ def _simulate(args) -> int:
         closed_form, failure = estimate(case, target_probability=args.design_gap or defaults.TARGET_PROBABILITY), None
     except (ConvergenceError, ValueError, ArithmeticError) as error:  # InputError, LinAlgError, overflow: the MC stands
         closed_form, failure = None, " ".join(str(error).split()) or type(error).__name__  # one line: why not
-    force_text = _force_text(args.units)
+    shown = _shown(args)
+    force_text = shown.force
     error_text = lambda f, r: f"{100 * (f / r - 1):+.1f} %" if abs(f / r - 1) <= 1e4 else f"{f / r:.3g} times"
     if args.design_gap is not None:
         return _print_design_gap(case, result, closed_form, failure, args)
@@ -94,14 +90,14 @@ def _simulate(args) -> int:
         print(f"P(F_max > {force_text(capacity)})  {100 * exceeding['probability_exceeding']:.1f} % of records "
               f"(95 % interval {100 * low_p:.1f} to {100 * high_p:.1f} %)")
     print(f"pounding        {100 * result.pounding_fraction:.1f} % of records, {result.impacts_mean:.2f} impacts per record")
-    print(f"peak impact v   {result.impact_velocity_max.mean():.4f} m/s (mean over records)")
+    print(f"peak impact v   {shown.velocity(float(result.impact_velocity_max.mean()))} (mean over records)")
     if closed_form is None:
         print(f"closed form     n/a: {failure}")
         return 0
     print("closed form, against this Monte Carlo")
     for label, force in (("recommended", closed_form.force_expected), ("paper", closed_form.paper.force_expected)):
         if force is None:
-            print(f"  {label:12s}  n/a (Eq. 13-14 hold for the Hertz-type laws only)")
+            print(f"  {label:12s}  n/a (the paper's formula holds for the Hertz-type laws only)")
         elif result.force_max_mean > 0.0:
             # The mean's 95 % interval read as a range of the closed form's error.
             print(f"  {label:12s}  {force_text(force)}   {error_text(force, result.force_max_mean)}"
@@ -110,7 +106,7 @@ def _simulate(args) -> int:
         else:
             print(f"  {label:12s}  {force_text(force)}   (no record pounded)")
     print(f"  pounding      {100 * closed_form.pounding_probability:.1f} % probability   (simulated: {100 * result.pounding_fraction:.1f} % of records)")
-    print(f"  regime        {closed_form.accuracy_regime}: {closed_form.measured_accuracy}")
+    print(f"  accuracy      {closed_form.measured_accuracy}")
     for warning in closed_form.warnings:
         print(f"  warning: {warning}")
     return 0
@@ -134,6 +130,11 @@ def _closed_form_dict(closed_form, capacity: float | None = None) -> dict:
     return out
 
 
+_GAP_ACCURACY = ("the closed form's, for comparison: on some of the pairs measured against records it was too small; "
+                 "the gap above is the records' own")
+"""What the closed-form gap beside a Monte Carlo design gap is worth, said where it is printed (a wheel has no docs/)."""
+
+
 def _print_design_gap(case, result, closed_form, failure, args) -> int:
     required = None if closed_form is None else closed_form.required_gap
     if args.json:
@@ -141,13 +142,14 @@ def _print_design_gap(case, result, closed_form, failure, args) -> int:
         print(json.dumps({"case": case.name, **result.to_dict(), "closed_form_required_gap": required, **failed}))
         return 0
     print(f"case            {case.name}")
+    length = _shown(args).length
     print(f"records         {_records_text(case, result.n_records, result.seed)} (free motion: the case's gap is not used)")
-    bound = f"{100 * result.upper_bound:.2f} cm" if math.isfinite(result.upper_bound) else f"n/a: it needs {result.records_for_bound} records"
-    print(f"gap for {100 * result.target_probability:g} % no pounding   {100 * result.gap:.2f} cm   (90 % confidence bound {bound})")
+    bound = length(result.upper_bound) if math.isfinite(result.upper_bound) else f"n/a: it needs {result.records_for_bound} records"
+    print(f"gap for {100 * result.target_probability:g} % no pounding   {length(result.gap)}   (90 % confidence bound {bound})")
     if closed_form is None:
         print(f"closed form     n/a: {failure}")
     else:
-        print(f"closed form     {100 * required:.2f} cm   (pounding estimate; docs/accuracy.md gives how far it was measured off)")
+        print(f"closed form     {length(required)}   ({_GAP_ACCURACY})")
     return 0
 
 
@@ -177,19 +179,20 @@ def _estimate(args) -> int:
         return 0
     paper = result.paper
     rules = result.separation_rules
-    force_text = _force_text(args.units)
+    shown = _shown(args)
+    force_text, length, velocity = shown.force, shown.length, shown.velocity
     print(f"case                        {case.name} ({'stationary' if case.excitation.stationary else 'non-stationary'}, {case.excitation.duration:.4g} s)")
-    print(f"gap                         {100 * case.contact.gap:{'.2f' if case.contact.gap < 1e4 else '.4g'}} cm")
+    print(f"gap                         {length(case.contact.gap)}")
     linearized = result.response
-    for line in engineering_lines(engineering_terms(case), force_text):
+    for line in engineering_lines(engineering_terms(case), shown):
         print(line)
-    print(f"sigma relative displacement {100 * result.sigma_relative_displacement:.3f} cm   "
-          f"(linearized {100 * linearized.sigma_relative_displacement:.3f} cm, plus the residual's response)")
-    print(f"sigma relative velocity     {result.sigma_relative_velocity:.4f} m/s   "
-          f"(linearized {linearized.sigma_relative_velocity:.4f} m/s)")
+    print(f"RMS relative displacement   {length(result.sigma_relative_displacement)}   "
+          f"(linearized {length(linearized.sigma_relative_displacement)}, plus the yielding the linearization leaves out)")
+    print(f"RMS relative velocity       {velocity(result.sigma_relative_velocity)}   "
+          f"(linearized {velocity(linearized.sigma_relative_velocity)})")
     print("recommended (gap-aware)")
     print(f"  expected extreme force    {force_text(result.force_expected)}")
-    print(f"  expected peak impact v    {result.relative_velocity_expected:.4f} m/s")
+    print(f"  expected peak impact v    {velocity(result.relative_velocity_expected)}")
     quantiles = result.force_max_distribution
     print(f"  F_max fractiles           50 %: {force_text(quantiles.quantile(0.5))}, 84 %: {force_text(quantiles.quantile(0.84))}, "
           f"95 %: {force_text(quantiles.quantile(0.95))}")
@@ -198,30 +201,31 @@ def _estimate(args) -> int:
     print(f"  expected impacts          {result.impacts_expected:.2f}   (approaches from below the gap; rebounds not counted)")
     print("  force braking an impact   " + (f"{force_text(result.opposing_force)}   (the buildings' own, at the gap)"
                                               if result.impacts_expected > 0.0 else "n/a (no impact expected at this gap)"))
-    print(f"  impacts' damping          sigma_V x{result.impacting_velocity_ratio:.3f} before an approach   "
-          f"(memory {result.impact_memory:.2f}; a dashpot of {result.impact_dashpot:.4g} N s/m between the floors)")
+    dashpot = f"{shown.from_si(result.impact_dashpot, force=1, length=-1, time=1):.4g} {shown.label(force=1, length=-1, time=1)}"
+    print(f"  impacts' damping          {100 * (1 - result.impacting_velocity_ratio):.1f} % off the RMS relative velocity before "
+          f"an approach, as a dashpot of {dashpot} between the floors")
     print(f"  pounding probability      {100 * result.pounding_probability:.1f} %")
-    print(f"  gap for {100 * result.target_probability:g} % no pounding  {100 * result.required_gap:.2f} cm"
-          f"   (SRSS {100 * rules['srss']:.2f} cm, ABS {100 * rules['abs']:.2f} cm, DDC {100 * rules['ddc']:.2f} cm)")
+    print(f"  gap for {100 * result.target_probability:g} % no pounding  {length(result.required_gap)}"
+          f"   (SRSS {length(rules['srss'])}, ABS {length(rules['abs'])}, DDC {length(rules['ddc'])})")
     accuracy = result.measured_accuracy if check is None else result.accuracy.statement(with_verdict=True)
     print(f"  accuracy                  {accuracy}")
-    print("paper (Rahimi & Soltani 2016, Eq. 12-30)")
+    print("paper (Rahimi & Soltani 2016)")
     if paper.unavailable is not None:
         print(f"  expected extreme force    n/a ({paper.unavailable})")
     elif paper.force_expected is None:
-        print("  expected extreme force    n/a (Eq. 13-14 hold for the Hertz-type laws only)")
+        print("  expected extreme force    n/a (the paper's formula holds for the Hertz-type laws only)")
     else:
         print(f"  expected extreme force    {force_text(paper.force_expected)}")
     if paper.relative_velocity_expected is not None:
-        print(f"  expected extreme velocity {paper.relative_velocity_expected:.4f} m/s   (peak factor {paper.peak_factor:.3f})")
-    print(f"  crossing rate (Eq. 24)    {paper.crossing_rate:.4f} 1/s, effective duration {paper.duration_effective:.2f} s")
+        print(f"  expected extreme velocity {velocity(paper.relative_velocity_expected)}   (peak factor {paper.peak_factor:.3f})")
+    print(f"  crossing rate             {paper.crossing_rate:.4f} 1/s, effective duration {paper.duration_effective:.2f} s")
     if paper.michaelov_n1 is not None:
-        print(f"  equivalent sigma (Eq. 29) {paper.sigma_relative_velocity_equivalent:.4f} m/s   "
-              f"(Michaelov's n1 = {paper.michaelov_n1:g}, sigma_V(t) by {args.paper_variance})")
+        print(f"  equivalent RMS velocity   {velocity(paper.sigma_relative_velocity_equivalent)}   "
+              f"(stationary equivalent of order {paper.michaelov_n1:g}, variance in time by {args.paper_variance})")
     for warning in result.warnings:
         print(f"warning: {warning}")
     if check is not None:
-        for line in (*check.sentences(force_text, lambda metres: f"{100 * metres:.2f} cm"), check.fractile_sentence(force_text)):
+        for line in (*check.sentences(force_text, length), check.fractile_sentence(force_text)):
             if line:
                 print(line)
     return 0

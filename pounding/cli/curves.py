@@ -9,7 +9,7 @@ import argparse
 import json
 
 from pounding import defaults
-from pounding.cli.arguments import bounded_number, increasing_values, record_count, whole_number_type
+from pounding.cli.arguments import add_units, bounded_number, increasing_values, record_count, whole_number_type
 from pounding.cli.progress import progress_bar
 
 __all__ = ["add_fragility", "add_spectrum", "run_fragility", "run_spectrum"]
@@ -21,8 +21,7 @@ def _common(parser: argparse.ArgumentParser) -> None:
                         help="also Monte Carlo, this many records a point (default: closed form only; recorded motions: "
                         "the first records of the suite)")
     parser.add_argument("--seed", type=whole_number_type(0), default=defaults.SEED, help=f"seed of the Monte Carlo study (default {defaults.SEED})")
-    parser.add_argument("--units", choices=("SI", "kgf-cm-s"), default="SI",
-                        help="units of --capacity and of the forces printed and charted: N (kN) or kgf (default SI); --json is always SI")
+    add_units(parser, "--capacity (N or kgf) and of the forces printed and charted")
     parser.add_argument("--work-dir", metavar="DIR", default=None,
                         help="folder of the finished Monte Carlo chunks: rerun with it to resume (default: a temporary folder)")
     parser.add_argument("--scheduler", default=None, metavar="ADDRESS",

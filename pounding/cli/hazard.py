@@ -18,16 +18,6 @@ def _g(acceleration: float) -> str:
     return f"{acceleration / STANDARD_GRAVITY:.3f} g"
 
 
-def _length(metres: float | None) -> str:
-    return "elastic" if metres is None else f"{100 * metres:.3f} cm"
-
-
-def _force(newtons: float | None) -> str:
-    if newtons is None:
-        return "elastic"
-    return f"{newtons / 1e6:.4f} MN" if abs(newtons) >= 1e5 else f"{newtons / 1e3:.2f} kN"
-
-
 def _spectrum_text(fitted: dict) -> str:
     text = f"{fitted['spectrum']}: G0 = {fitted['G0']:.4g} m^2/s^3, omega_g = {fitted['omega_g']:.3g} rad/s, xi_g = {fitted['xi_g']:.3g}"
     if fitted["spectrum"] == "clough-penzien":
@@ -35,10 +25,12 @@ def _spectrum_text(fitted: dict) -> str:
     return text
 
 
-def engineering_lines(terms: dict, force_text=None) -> list[str]:
-    """The ground motion and the storeys, from ``Estimate.to_dict()`` (its :func:`~pounding.case.engineering.engineering_terms`);
-    ``force_text`` prints a force [N] (default kN or MN)."""
-    force_text = force_text or _force
+def engineering_lines(terms: dict, shown=None) -> list[str]:
+    """The ground motion and the storeys, from ``Estimate.to_dict()`` (its :func:`~pounding.case.engineering.engineering_terms`),
+    forces and lengths in the :class:`~pounding.display_units.Display` ``shown`` (default SI's: kN, mm)."""
+    from pounding.display_units import display
+
+    shown = shown or display("SI")
     motion = terms["ground_motion"]
     lines = []
     if "fitted_excitation" in terms:
@@ -62,9 +54,10 @@ def engineering_lines(terms: dict, force_text=None) -> list[str]:
     for storey in terms["storeys"]:
         where = f"building {storey['building']} storey {storey['storey']}"
         if storey["yield_drift"] is None:
-            lines.append(f"  {where:25s} elastic, stiffness {storey['stiffness']:.4g} N/m")
+            stiffness = f"{shown.from_si(storey['stiffness'], force=1, length=-1):.4g} {shown.label(force=1, length=-1)}"
+            lines.append(f"  {where:25s} elastic, stiffness {stiffness}")
         else:
-            lines.append(f"  {where:25s} yield drift {_length(storey['yield_drift'])}, yield force {force_text(storey['yield_force'])}, "
+            lines.append(f"  {where:25s} yield drift {shown.length(storey['yield_drift'])}, yield force {shown.force(storey['yield_force'])}, "
                          f"post-yield ratio {storey['post_yield_ratio']:.3g}")
     return lines
 

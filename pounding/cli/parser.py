@@ -10,6 +10,7 @@ from functools import lru_cache
 
 from pounding import defaults
 from pounding.cli.arguments import (
+    add_units,
     bounded_number,
     capacity,
     probability,
@@ -91,8 +92,7 @@ def parser() -> argparse.ArgumentParser:
     simulate.add_argument("--capacity", type=capacity, metavar="F", default=None,
                           help="a capacity F (N; kgf with --units kgf-cm-s): also the fraction of records whose F_max "
                           "exceeds it, with its 95 %% interval")
-    simulate.add_argument("--units", choices=("SI", "kgf-cm-s"), default="SI",
-                          help="units of --capacity and of the forces printed: N (kN, MN) or kgf (default SI); --json is always SI")
+    add_units(simulate, "--capacity (N or kgf) and of the numbers printed")
     simulate.add_argument("--json", action="store_true", help="print one JSON object (SI units) instead of a table")
     simulate.add_argument("--design-gap", type=probability, metavar="P", default=None,
                           help="instead, the gap for probability P of no pounding, in (0, 1): a record pounds at a gap "
@@ -123,8 +123,7 @@ def parser() -> argparse.ArgumentParser:
                               *defaults.MICHAELOV_N1_RANGE, defaults.MICHAELOV_N1))
     estimate.add_argument("--capacity", type=capacity, metavar="F", default=None,
                           help="a capacity F (N; kgf with --units kgf-cm-s): also the probability that F_max exceeds it")
-    estimate.add_argument("--units", choices=("SI", "kgf-cm-s"), default="SI",
-                          help="units of --capacity and of the forces printed: N (kN, MN) or kgf (default SI); --json is always SI")
+    add_units(estimate, "--capacity (N or kgf) and of the numbers printed")
     estimate.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     estimate.add_argument("--check", type=record_count, nargs="?", const=ADAPTIVE, default=None, metavar="N",
                           help="also run the Monte Carlo of the same case on N records (without N: until the 95 %% interval "
@@ -193,15 +192,15 @@ def parser() -> argparse.ArgumentParser:
                         help="Monte Carlo records of the check, shown in the figures too (default 0: the check runs as "
                         f"many as its precision asks, {defaults.CHECK_FIRST_RECORDS} to {defaults.CHECK_MAX_RECORDS}; "
                         "recorded motions: each once)")
-    report.add_argument("--seed", type=_non_negative_int, default=defaults.REPORT_SEED,
-                        help=f"seed of the Monte Carlo check and studies (default {defaults.REPORT_SEED})")
+    report.add_argument("--seed", type=_non_negative_int, default=defaults.SEED,
+                        help=f"seed of the Monte Carlo check and studies (default {defaults.SEED})")
     report.add_argument("--gap-points", type=whole_number_type(0), default=0, metavar="N",
                         help="also Monte Carlo points at N gaps across the force-against-gap figure, --records each "
                         "(needed), the same seed (default 0: none)")
     report.add_argument("--design-gap", type=float, metavar="P", default=None,
                         help="also the Monte Carlo gap for probability P of no pounding, in (0, 1), from the free motion of "
                         "the same --records (needed); P is then the target of the closed-form gap too")
-    report.add_argument("--units", choices=("SI", "kgf-cm-s"), default="SI", help="units shown in the report (default SI)")
+    add_units(report, "the numbers in the report")
     report.add_argument("--json", action="store_true", help="print one JSON object: the file written and the figures in it (SI)")
 
     from pounding.cli import curves, sweep  # light: dask, pandas and bokeh are imported when a sweep runs

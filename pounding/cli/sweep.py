@@ -8,7 +8,7 @@ import math
 import sys
 
 from pounding import defaults
-from pounding.cli.arguments import record_count, whole_number_type
+from pounding.cli.arguments import add_units, record_count, whole_number_type
 from pounding.cli.progress import progress_bar
 from pounding.studies.sweeps.engine import SERIAL, TABLE_FORMATS, sweep
 from pounding.studies.sweeps.spec import normalized_vary
@@ -47,6 +47,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
                         help=f"records per Dask task (default {defaults.CHUNK_RECORDS})")
     parser.add_argument("--format", choices=TABLE_FORMATS, default="csv", help="format of the table (default csv; parquet needs pyarrow)")
     parser.add_argument("--no-chart", action="store_true", help="do not write the design chart sweep.html")
+    add_units(parser, "the forces printed (the varied keys stay in the case's units)")
     parser.add_argument("--json", action="store_true", help="print one JSON object (forces in N, lengths in m)")
     return parser
 
@@ -88,28 +89,33 @@ def run(args: argparse.Namespace) -> int:
         return 0
     print(f"{len(table)} point(s) x {args.records} records, seed {args.seed}; "
           f"{table.attrs['chunks_computed']} chunk(s) computed, {table.attrs['chunks_reused']} found done")
-    header = [*paths, "F_e closed form", "F_max Monte Carlo (s.e.)", "P closed form", "P Monte Carlo"]
+    from pounding.display_units import display
+
+    shown = display(args.units)
+    unit = shown.force_unit
+    header = [*paths, f"F_e closed form [{unit}]", f"F_max Monte Carlo (s.e.) [{unit}]", "P closed form", "P Monte Carlo"]
     lines = []
     for row in table.to_dict(orient="records"):
         lines.append([
             *(f"{row[p]:g}" for p in paths),
-            _kn(row["estimate_force_N"]),
-            f"{_kn(row['mc_force_mean_N'])} ({_kn(row['mc_force_std_error_N'])})",
+            _number(row["estimate_force_N"], shown),
+            f"{_number(row['mc_force_mean_N'], shown)} ({_number(row['mc_force_std_error_N'], shown)})",
             _fraction(row["estimate_pounding_probability"]),
             _fraction(row["mc_pounding_fraction"]),
         ])
     widths = [max(len(header[i]), *(len(line[i]) for line in lines)) for i in range(len(header))]
     for line in [header, *lines]:
         print("  ".join(cell.rjust(width) for cell, width in zip(line, widths)))
-    print(f"forces in kN; varied keys in the case's units ({table.attrs['units']})")
+    print(f"forces in {unit}; varied keys in the case's units ({table.attrs['units']})")
     print(f"table  {table.attrs['table']}")
     if table.attrs["chart"]:
         print(f"chart  {table.attrs['chart']}")
     return 0
 
 
-def _kn(newtons: float) -> str:
-    return "n/a" if not math.isfinite(newtons) else f"{newtons / 1e3:.2f}"
+def _number(newtons: float, shown) -> str:
+    """A force [N] in the display units' force unit, the number alone (the unit is in the column's header)."""
+    return "n/a" if not math.isfinite(newtons) else f"{shown.from_si(newtons, force=1):.4g}"
 
 
 def _fraction(value: float) -> str:

@@ -271,14 +271,18 @@ def accuracy_band(force, ranges) -> tuple[np.ndarray, np.ndarray]:
     return edges[:, 0], edges[:, 1]
 
 
+_SPREAD = "the RMS relative displacement"
+"""sigma_X in words, as every text the user reads says it (the symbols are docs/theory.md's)."""
 _WHERE = {
     "frequent": "where pounding is frequent",
-    "moderate gap": "where the gap lies between sigma_X / 2 and sigma_X",
-    "narrow band": "where the relative motion is narrow-band",
+    "moderate gap": f"where the gap is 0.5 to 1 times {_SPREAD}",
+    "narrow band": "where the buildings sway at nearly one frequency",
     "large residual": "where storeys are near elastic-perfectly plastic",
-    "rare": "where pounding is rare",
+    "rare": f"where the gap exceeds {_SPREAD}",
 }
-_CHECK = "Check it with `pounding simulate`."
+_CHECK = "Check it with `pounding estimate --check`."
+"""The advice of a warning where the closed form may be off: the Monte Carlo of the same case, beside it
+(the dashboard's headline, dashboard/headline.py, says it in the page's terms)."""
 
 
 def assess(pair, gap: float, sigma_x: float, required_gap: float, target_probability: float) -> Assessment:
@@ -297,16 +301,17 @@ def assess(pair, gap: float, sigma_x: float, required_gap: float, target_probabi
                         f"drift; up to {100 * drift['max']:.0f} % of records pounded at the gap for 95 %. {_CHECK}")
     table = _force_table(pair)
     if share > RESIDUAL_SHARE_LIMIT:
-        warnings.append(f"Storeys near elastic-perfectly plastic (the residual adds {100 * share:.0f} % to sigma): the "
+        warnings.append(f"Storeys near elastic-perfectly plastic sway {100 * share:.0f} % more than their linear equivalent: the "
                         f"force may be off by {_bounded_span(_force_entry(table, 'large residual', yielding))}. {_CHECK}")
     if bandwidth < NARROW_BAND_LIMIT:
-        warnings.append(f"The relative motion is narrow-band (q = {bandwidth:.2f}): the force may be off by "
+        warnings.append("The buildings sway at nearly one frequency: the force may be off by "
                         f"{_bounded_span(_force_entry(table, 'narrow band', yielding))}. {_CHECK}")
     if MODERATE_GAP * sigma_x < gap <= sigma_x:
-        warnings.append("The gap lies between sigma_X / 2 and sigma_X: the force may be off by "
+        warnings.append(f"The gap is 0.5 to 1 times {_SPREAD}: the force may be off by "
                         f"{_bounded_span(_force_entry(table, 'moderate gap', yielding))}. {_CHECK}")
     if gap > sigma_x:
-        warnings.append(f"Pounding is rare at this gap (above sigma_X): the force may be off by {_bounded_span(measured)}. {_CHECK}")
+        warnings.append(f"Only the largest swings close this gap (it exceeds {_SPREAD}): the force may be off by "
+                        f"{_bounded_span(measured)}. {_CHECK}")
     if required_gap > sigma_x:  # where pairs like this one were measured to pound more often than 1 - 0.95
         warning = _required_gap_warning(pair, spectrum, yielding, target_probability)
         if warning:
@@ -324,9 +329,9 @@ def _required_gap_warning(pair, spectrum: str, yielding: bool, target_probabilit
     measured = accuracy_data()["required_gap"][kind + (", floors moving together" if together else "")]
     if measured["mean"] <= 0.05:
         return ""  # on average no more records pounded than the target allows
-    cause = f" and the floors move together (r = {correlation:.2f})" if together else ""
-    return (f"The gap for {100 * target_probability:.8g} % lies where pounding is rare{cause}: at the gap for 95 %, up to "
-            f"{100 * measured['max']:.0f} % of records pounded. Use `pounding simulate --design-gap {target_probability:.8g}`.")
+    cause = f", and the floors move together (correlation {correlation:.2f})" if together else ""
+    return (f"The gap for {100 * target_probability:.8g} % lies in the motion's tail{cause}: up to {100 * measured['max']:.0f} % "
+            f"of records pounded at such a gap for 95 %. Use `pounding simulate --design-gap {target_probability:.8g}`.")
 
 
 def _span(entry: dict | MeasuredRange) -> str:
@@ -352,21 +357,22 @@ def extreme_warnings(pair, force: float, paper_force: float | None, velocity: fl
     share = float(pair.cutoff_shares[5])  # of the linearized sigma_V^2, which loses more than sigma_X^2 (w^2 G_X)
     measured = accuracy_data()["extreme_inputs"]
     if share > CUTOFF_SHARE_LIMIT:
-        above, below = _bounded_span(measured["cutoff_above_frequencies"]), _bounded_span(measured["cutoff_below_frequencies"])
-        warnings.append(f"The records stop at {case.excitation.cutoff_frequency:.3g} rad/s, removing {100 * share:.0f} % of "
-                        f"sigma_V^2. Cut there too, it was {above} off, {below} far below the buildings' frequencies. {_CHECK}")
+        cuts = (measured["cutoff_above_frequencies"], measured["cutoff_below_frequencies"])  # either side of the modes
+        either = {"low": min(c["low"] for c in cuts), "high": max(c["high"] for c in cuts)}
+        warnings.append(f"The records stop at {case.excitation.cutoff_frequency:.3g} rad/s, cutting {100 * share:.0f} % of the "
+                        f"relative velocity's power: the force may be off by {_bounded_span(either)}. {_CHECK}")
     contact = case.contact
     if velocity > 0.0:
         impact = float(undamped_peak_force(contact, velocity, case.reduced_mass))
         penetration = (impact / contact.stiffness) ** (1.0 / contact.stiffness_exponent) / sigma_x
         if penetration > SOFT_CONTACT_LIMIT:
-            warnings.append(f"The contact is soft: the largest impact would penetrate {penetration:.2g} sigma_X, no short "
-                            f"shock as assumed; measured {_bounded_span(measured['soft_contact'])} off beyond 1, more if softer. {_CHECK}")
+            warnings.append(f"The contact is soft: the largest impact would penetrate {penetration:.2g} times {_SPREAD}; "
+                            f"measured {_bounded_span(measured['soft_contact'])} off, more if softer. {_CHECK}")
     weight = min(case.contact_masses) * STANDARD_GRAVITY
     largest = max(force, paper_force or 0.0)
     if largest > FORCE_WEIGHT_LIMIT * weight:
         warnings.append(f"The force is {largest / weight:.2g} times the lighter colliding floor's weight: no building takes "
-                        "that, and the model knows no failure. Check the contact stiffness and G0.")
+                        "that, and the model knows no failure. Check the contact stiffness and the ground motion's intensity.")
     return tuple(warnings)
 
 

@@ -99,7 +99,7 @@ class FitQuality:
             return ""
         span = f"{0.5 * min(self.building_periods):.2g}-{2 * max(self.building_periods):.2g} s"
         return (f"The closed form's spectrum is {100 * (ratio - 1):+.0f} % off the records' mean {name} "
-                f"({span} checked): its force may be off as much or more. Check it with `pounding simulate`.")
+                f"({span} checked): its force may be off as much or more. Check it with `pounding estimate --check`.")
 
     def to_dict(self) -> dict:
         return {"building_periods": list(self.building_periods), "building_ratios": list(self.building_ratios),

@@ -158,7 +158,9 @@ class FittedExcitation:
         bounds = self.parameters_at_bounds()
         if not bounds:
             return ""
-        named = ", ".join(f"{name} = {value:.3g}" for name, value in bounds.items())
+        words = {"omega_g": ("ground frequency", " rad/s"), "xi_g": ("ground damping ratio", ""),
+                 "omega_f": ("high-pass frequency", " rad/s"), "xi_f": ("high-pass damping ratio", "")}
+        named = ", ".join(f"{words[name][0]} {value:.3g}{words[name][1]}" for name, value in bounds.items())
         return (f"The {self.kind.replace('-', ' ').title().replace(' ', '-')} fit to the records stops on a bound ({named}): "
                 "it describes them poorly. The closed form takes the filter bank, not it.")
 

@@ -37,7 +37,6 @@ from pounding.report.method_section import method_notes
 from pounding.report.provenance import CaseChange, ReportProvenance, case_changes, case_provenance
 from pounding.report.snapshot import (
     DEFAULT_RECORD,
-    DEFAULT_SEED,
     GAP_POINTS,
     PSD_POINTS,
     MonteCarloPoint,
@@ -53,7 +52,6 @@ from pounding.report.summary import MonteCarloCheck, monte_carlo_check, verdict_
 __all__ = [
     "CaseChange",
     "DEFAULT_RECORD",
-    "DEFAULT_SEED",
     "DISPLAY_UNITS",
     "GAP_POINTS",
     "method_notes",

@@ -43,7 +43,7 @@ def result_html(
     sigma_paper = (
         d.velocity(linearized.sigma_relative_velocity)
         if stationary
-        else d.velocity(p.sigma_relative_velocity_equivalent) + " (sigma_eq, Eq. 29)"
+        else d.velocity(p.sigma_relative_velocity_equivalent) + " (stationary equivalent)"
     )
     rows = [
         _row(
@@ -52,18 +52,18 @@ def result_html(
             f'<span class="fe-paper">{d.force(p.force_expected)}</span>',
             "headline",
         ),
-        _row("sigma of relative displacement", d.length(e.sigma_relative_displacement), d.length(linearized.sigma_relative_displacement)),
-        _row("sigma of relative velocity", d.velocity(e.sigma_relative_velocity), sigma_paper),
-        _row("crossing rate", f"{e.upcrossing_rate:.4g} {rate} (nu<sub>0</sub><sup>+</sup>)", f"{p.crossing_rate:.4g} {rate} (nu, Eq. 24)"),
+        _row("RMS relative displacement", d.length(e.sigma_relative_displacement), d.length(linearized.sigma_relative_displacement)),
+        _row("RMS relative velocity", d.velocity(e.sigma_relative_velocity), sigma_paper),
+        _row("crossing rate", f"{e.upcrossing_rate:.4g} {rate}", f"{p.crossing_rate:.4g} {rate}"),
         _row("effective duration", f"{case.excitation.duration:.4g} s", f"{p.duration_effective:.4g} s"),
-        _row("peak factor", "(over the gap: no single factor)", "n/a" if p.peak_factor is None else f"{p.peak_factor:.4g} (Davenport, Eq. 23)"),
+        _row("peak factor", "(over the gap: no single factor)", "n/a" if p.peak_factor is None else f"{p.peak_factor:.4g} (Davenport)"),
         _row("expected impact velocity", d.velocity(e.relative_velocity_expected), d.velocity(p.relative_velocity_expected)),
         _row("peak penetration", "n/a", d.length(p.penetration_expected)),
         _row("peak force ratio K(e)", f"{e.peak_force_ratio:.4g} (free masses)", "1 (undamped Hertz)"),
         _row("buildings' force braking an impact", d.force(e.opposing_force), "(not modelled)"),
         _row(
             "impacts' damping of the motion before an approach",
-            f"sigma<sub>V</sub> &times; {e.impacting_velocity_ratio:.3f} (memory {e.impact_memory:.2f})",
+            f"RMS relative velocity {100 * (1 - e.impacting_velocity_ratio):.1f} % lower",
             "(not modelled)",
         ),
         _row("expected number of impacts", f"{e.impacts_expected:.4g} (approaches; rebounds not counted)", "(ignores the gap)"),
@@ -101,7 +101,7 @@ def result_html(
         summary += "".join(f'<p class="estimate-warning">&#9888; {html.escape(w)}</p>' for w in e.warnings)
     return (
         '<div class="pounding-result">'
-        "<table><thead><tr><th></th><th>recommended (gap-aware)</th><th>paper (Eq. 12-30)</th></tr></thead><tbody>"
+        "<table><thead><tr><th></th><th>recommended (gap-aware)</th><th>paper (Rahimi &amp; Soltani 2016)</th></tr></thead><tbody>"
         + "".join(rows)
         + "</tbody></table>"
         + summary

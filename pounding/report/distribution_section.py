@@ -34,7 +34,7 @@ def distribution_figure(snapshot: Snapshot, units: str = "SI"):
                   sizing_mode="stretch_width", tools="pan,wheel_zoom,box_zoom,reset,save,hover")
     forces = np.concatenate([[0.0], distribution.forces])
     cdf = np.concatenate([[0.0], distribution.cdf])  # the atom at 0: no impact during the record
-    plot.line(forces / shown.force_scale, cdf, line_width=2, color="#1f77b4", legend_label="closed form (G31)")
+    plot.line(forces / shown.force_scale, cdf, line_width=2, color="#1f77b4", legend_label="closed form")
     study = matching_records(snapshot)
     if study is not None:
         ordered = np.sort(np.asarray(study.force_max_values))

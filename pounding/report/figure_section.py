@@ -81,7 +81,7 @@ def report_figures(snapshot: Snapshot, units: str = "SI") -> list[ReportFigure]:
         "Power spectral densities of the ground acceleration and of the relative velocity",
         "Two-sided power spectral densities: left, the ground acceleration the closed form takes "
         f"(expected PGA of its records {_pga_g(snapshot):.3g} g); right, the relative velocity of the contact floors of the "
-        f"statistically linearized pair (sigma_V = {d.velocity(e.sigma_relative_velocity)} with the residual's response).",
+        f"statistically linearized pair (RMS {d.velocity(e.sigma_relative_velocity)}, the storeys' yielding beyond the linearization included).",
         (plots.psd_ground, plots.psd_velocity)))
     history = snapshot.history
     if history is not None:
@@ -90,7 +90,7 @@ def report_figures(snapshot: Snapshot, units: str = "SI") -> list[ReportFigure]:
         shown.append(ReportFigure(
             "Hysteresis loops of the first storeys in one record",
             f"Restoring force against drift of the first storey of building 1 (left) and 2 (right) in record {snapshot.record} "
-            f"of the study seeded {snapshot.seed} (Bouc-Wen, solid; the equivalent linear storey of Eq. 19, dashed; during "
+            f"of the study seeded {snapshot.seed} (Bouc-Wen, solid; the equivalent linear storey, dashed; during "
             f"impacts, dots). Largest drift {d.length(peaks[0])} and {d.length(peaks[1])}; largest restoring force "
             f"{d.force(forces[0])} and {d.force(forces[1])}.",
             tuple(plots.hysteresis)))
@@ -136,7 +136,7 @@ def _distribution_caption(snapshot: Snapshot, d: Display) -> str:
     distribution = snapshot.estimate.force_max_distribution
     fractiles = ", ".join(f"{100 * float(p):g} % {d.force(distribution.quantile(float(p)))}" for p in defaults.FORCE_QUANTILES)
     text = (f"Probability that the largest pounding force of a {snapshot.case.excitation.duration:g} s record stays below f: "
-            f"closed form (G31, line), its step at 0 the probability of no impact, {distribution.no_impact_probability:.3f}. "
+            f"closed form (line), its step at 0 the probability of no impact, {distribution.no_impact_probability:.3f}. "
             f"Fractiles: {fractiles}.")
     study = matching_records(snapshot)
     if study is not None:

@@ -90,7 +90,7 @@ class Figures:
         self._band_legend = next(item for item in g.legend[0].items if item.label.value == BAND_LABEL)
         self.gap = g
 
-        self.psd_ground = figure(title="Ground acceleration PSD (two-sided, Eq. 7)", height=300, x_axis_type="log", y_axis_type="log", **common)
+        self.psd_ground = figure(title="Ground acceleration PSD (two-sided)", height=300, x_axis_type="log", y_axis_type="log", **common)
         self.psd_ground.line("omega", "ground", source=src["psd_ground"], color="#7f7f7f", line_width=2)
         self.psd_velocity = figure(
             title="Relative velocity PSD at the contact floors (linearized pair)", height=300, x_axis_type="log", y_axis_type="log", **common
@@ -103,7 +103,7 @@ class Figures:
         for b in (1, 2):
             h = figure(title=f"Building {b}, storey 1, one record", height=320, **common)
             h.line("drift", "equivalent", source=src[f"hysteresis{b}"], color="#ff7f0e", line_dash="dashed", alpha=0.8,
-                   legend_label="equivalent linear (Eq. 19)")
+                   legend_label="equivalent linear")
             h.line("drift", "force", source=src[f"hysteresis{b}"], color="#1f77b4", legend_label="Bouc-Wen")
             h.scatter("drift", "force", source=src[f"impact{b}"], color="#d62728", size=4, legend_label="during impact")
             h.legend.location = "top_left"

@@ -20,7 +20,7 @@ SPECTRUM_RECORDS = 20
 """Synthetic records whose mean response spectrum the report sets against a design spectrum."""
 
 
-def hazard_figure(case: Case, seed: int = defaults.REPORT_SEED, units: str = "SI"):
+def hazard_figure(case: Case, seed: int = defaults.SEED, units: str = "SI"):
     """The design spectrum, its random-vibration counterpart and the mean spectrum of
     :data:`SPECTRUM_RECORDS` records drawn from it; or, for recorded motions, their
     mean periodogram against the fitted spectrum (in ``units``' lengths). None for a process given by its parameters."""

@@ -11,12 +11,12 @@ from pounding.closed_form.regimes import accuracy_data
 __all__ = ["accuracy_table", "method_notes"]
 
 _REGIMES = {
-    "frequent": "frequent pounding: gap below sigma_X / 2, broad-band motion, small residual",
-    "moderate gap": "moderate gap: between sigma_X / 2 and sigma_X",
-    "narrow band": "narrow-band relative motion",
+    "frequent": "frequent pounding: gap below half the RMS relative displacement, broad-band motion, storeys not near elastic-perfectly plastic",
+    "moderate gap": "moderate gap: 0.5 to 1 times the RMS relative displacement",
+    "narrow band": "narrow-band relative motion (the buildings sway at nearly one frequency)",
     "large residual": "a large share of the response from the part of the Bouc-Wen law the linearization drops",
-    "rare, yielding": "rare pounding (gap above sigma_X), yielding storeys",
-    "rare, elastic": "rare pounding (gap above sigma_X), elastic storeys",
+    "rare, yielding": "large gap (above the RMS relative displacement), yielding storeys",
+    "rare, elastic": "large gap (above the RMS relative displacement), elastic storeys",
 }
 
 
@@ -41,15 +41,15 @@ def method_notes(regime: str | None = None) -> str:
     """The method note, and the accuracy measured by regime (``regime``: this case's, marked)."""
     frequent = accuracy_data()["force"]["kanai-tajimi"]["frequent"]
     statement = (f"Within 10 % of Monte Carlo on {frequent['within_10_percent']} of {frequent['cases']} tested cases "
-                 "where pounding is frequent (gap below sigma_X / 2, broad-band motion, small residual).")
+                 "where pounding is frequent (gap below half the RMS relative displacement, broad-band motion).")
     return _METHOD_NOTES.replace("{frequent}", statement) + _ACCURACY.replace("{table}", accuracy_table(regime))
 
 
 _METHOD_NOTES = """
 <h2>5. Method</h2>
 <p>Paper: Rahimi, S. and Soltani, M. (2016), "Expected extreme value of pounding force between two adjacent
-buildings", <i>Structural Engineering and Mechanics</i>; equation numbers below are the paper's. sigma_X and sigma_V are the standard deviations
-of the relative displacement and velocity of the contact floors; F<sub>max</sub> is the largest pounding force
+buildings", <i>Structural Engineering and Mechanics</i>; equation numbers below are the paper's. RMS relative displacement and velocity are those of the contact
+floors (their standard deviations); F<sub>max</sub> is the largest pounding force
 of one record, E[F<sub>max</sub>] its expectation over records.</p>
 <ul class="method-notes">
 <li><b>Buildings.</b> Shear buildings with a Bouc-Wen law in every storey (Eq. 1-2, 36-39);
@@ -72,7 +72,7 @@ rest; the largest approach counted on the motion that the impacts before it leav
 pair remembers them); each impact's peak force is the contact law's own, K(e) times the undamped Hertz peak,
 lowered by the buildings' own forces that brake the approach at the gap. The distribution of F<sub>max</sub>
 (its fractiles) follows from the same counts: the probability of no impact, then the largest approach's speed.
-{frequent} Less accurate in the other regimes, and not reliable when pounding is rare (warnings say so): the
+{frequent} Less accurate in the other regimes, and not reliable where only the largest swings close the gap (warnings say so): the
 table below gives the error measured in each.</li>
 </ul>
 """
@@ -80,7 +80,7 @@ table below gives the error measured in each.</li>
 _ACCURACY = """
 <h3>Measured accuracy of the recommended E[F<sub>max</sub>]</h3>
 <p>Error = (closed form - Monte Carlo) / Monte Carlo over the tested cases of a Kanai-Tajimi ground motion,
-each against a Monte Carlo study of its own; the regime is decided from the case's gap, sigma_X, bandwidth and
-residual share.</p>
+each against a Monte Carlo study of its own; the regime is decided from the case's gap against the RMS relative
+displacement, the motion's bandwidth and how far the storeys yield beyond the linearization.</p>
 {table}
 """

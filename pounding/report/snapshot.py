@@ -20,8 +20,6 @@ from pounding.simulation.monte_carlo import DesignGap, SimulationResult, TimeHis
 from pounding.simulation.plan import MonteCarloPlan, as_plan
 from pounding.studies.check import EstimateCheck
 
-DEFAULT_SEED = defaults.REPORT_SEED
-"""Seed of the study whose record the hysteresis loops show."""
 DEFAULT_RECORD = 0
 """Index of that record."""
 GAP_POINTS = 41
@@ -109,7 +107,7 @@ class Snapshot:
     history: TimeHistory | None
     history_error: str
     equivalent_force: tuple
-    seed: int = DEFAULT_SEED
+    seed: int = defaults.SEED
     record: int = DEFAULT_RECORD
     monte_carlo: tuple = field(default=())
     design_gap: DesignGap | None = None
@@ -163,7 +161,7 @@ def _offset(report, index: int, count: int):
 
 def compute_snapshot(
     case: Case,
-    seed: int = DEFAULT_SEED,
+    seed: int = defaults.SEED,
     record: int = DEFAULT_RECORD,
     target_probability: float = defaults.TARGET_PROBABILITY,
     monte_carlo: tuple = (),

@@ -32,7 +32,7 @@ def with_check(snapshot: Snapshot, progress: Callable[[int, int], None] | None =
     """The snapshot with its verdict (``snapshot.check``): as given; else :func:`~pounding.studies.check.check_estimate`
     of its estimate on the records of the matching study (:func:`matching_study`: its count and seed, so the numbers
     are the study's); else on as many records as the check's precision asks, seeded as the snapshot
-    (``defaults.REPORT_SEED`` unless given). ``progress(done, total)`` counts the check's records.
+    (``defaults.SEED`` unless given). ``progress(done, total)`` counts the check's records.
 
     Raises ValueError where the given check is of another estimate (another force or target probability)."""
     check = snapshot.check
@@ -102,7 +102,7 @@ def summary_rows(snapshot: Snapshot, units: str = "SI") -> list[tuple[str, str, 
          f"during the {duration:g} s record, at the gap of {d.length(case.contact.gap)}"),
         (f"gap needed for {100 * e.target_probability:g} % probability of no pounding", d.length(e.required_gap),
          f"closed form; SRSS rule {d.length(e.separation_rules['srss'])}, ABS {d.length(e.separation_rules['abs'])}"),
-        ("paper's F_e (Eq. 14)", d.force(e.paper.force_expected), "for comparison: independent of the gap"),
+        ("paper's F_e (Rahimi & Soltani 2016)", d.force(e.paper.force_expected), "for comparison: independent of the gap"),
     ]
     check = snapshot.check
     if check is None:
