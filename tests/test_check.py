@@ -244,3 +244,34 @@ def test_a_recorded_suite_checks_on_its_own_records_each_once(tmp_path, capsys):
     assert main(["estimate", str(path), "--check", "50", "--json"]) == 0
     captured = capsys.readouterr()
     assert json.loads(captured.out)["check"]["records"] == 6 and "do not apply to recorded motions" in captured.err
+
+
+def test_estimate_gives_the_gap_for_a_capacity_and_checks_it_on_the_records(capsys):
+    """Issue 34: beside the no-pounding gap, the gap at which P(F_max > capacity) stays within the target, in the
+    text and in --json (gap_for_capacity, m); with --check, the same records simulated at that gap say whether the
+    target holds there (gap_for_capacity_check: the fraction over the capacity and its 95 % interval)."""
+    from pounding import estimate, load_case
+
+    assert main(["estimate", "section5-T2-0.4", "--capacity", "3e5", "--check", "200", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    expected = estimate(load_case("section5-T2-0.4")).gap_for_capacity(3e5)
+    assert data["gap_for_capacity"] == pytest.approx(expected, rel=1e-12) and 0 < expected < data["required_gap"]
+    at_gap = data["gap_for_capacity_check"]
+    assert at_gap["gap"] == data["gap_for_capacity"] and at_gap["records"] == data["check"]["records"] == 200
+    low, high = at_gap["probability_exceeding_interval"]
+    assert low <= at_gap["probability_exceeding"] <= high and low <= 0.05 <= high + 0.03  # the target, within the noise
+    assert main(["estimate", "section5-T2-0.4", "--capacity", "3e5", "--check", "200"]) == 0
+    text = capsys.readouterr().out
+    assert "gap for P(F_max > 300 kN) <= 5 %" in text and "At the gap for 300 kN" in text and "the target of 5 %" in text
+
+
+def test_estimate_states_each_codes_clause_for_the_gap_entered(capsys):
+    """The codes' separation rules in the codes' words, first after the gap: met or not, the separation required in
+    the display unit; in --json as code_checks."""
+    assert main(["estimate", "section5-T2-0.4"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[1].startswith("gap") and lines[2].split()[:2] == ["EN", "1998-1"] and re.search(r"not met: [\d.]+ mm required", lines[2])
+    assert lines[3].strip().startswith("ASCE 7-16 12.12.3") and lines[4].strip().startswith("DDC rule")
+    assert main(["estimate", "section5-T2-0.4", "--json"]) == 0
+    checks = json.loads(capsys.readouterr().out)["code_checks"]
+    assert [c["code"] for c in checks] == ["EN 1998-1", "ASCE 7-16", "DDC rule"] and not any(c["met"] for c in checks)

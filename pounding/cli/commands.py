@@ -168,13 +168,18 @@ def _estimate(args) -> int:
     result = estimate(case, target_probability=args.target_probability, paper_variance=args.paper_variance,
                       michaelov_n1=args.michaelov_n1)
     check = None if args.check is None else _check(case, result, args)
+    gap_for_capacity = None if capacity is None else result.gap_for_capacity(capacity)
+    at_capacity_gap = None if check is None or capacity is None else _capacity_gap_check(case, gap_for_capacity, capacity, check)
     if args.json:
         out = result.to_dict()
         if capacity is not None:
             out["capacity"] = capacity
             out["probability_exceeding"] = result.probability_exceeding(capacity)
+            out["gap_for_capacity"] = gap_for_capacity
         if check is not None:
             out.update(check=check.to_dict(), **check.answers())
+        if at_capacity_gap is not None:
+            out["gap_for_capacity_check"] = at_capacity_gap
         print(json.dumps(out))
         return 0
     paper = result.paper
@@ -183,6 +188,8 @@ def _estimate(args) -> int:
     force_text, length, velocity = shown.force, shown.length, shown.velocity
     print(f"case                        {case.name} ({'stationary' if case.excitation.stationary else 'non-stationary'}, {case.excitation.duration:.4g} s)")
     print(f"gap                         {length(case.contact.gap)}")
+    for code in result.code_checks:
+        print(f"  {code.title:<26s}{'met' if code.met else 'not met'}: {length(code.required_gap)} required ({code.short_rule})")
     linearized = result.response
     for line in engineering_lines(engineering_terms(case), shown):
         print(line)
@@ -207,6 +214,10 @@ def _estimate(args) -> int:
     print(f"  pounding probability      {100 * result.pounding_probability:.1f} %")
     print(f"  gap for {100 * result.target_probability:g} % no pounding  {length(result.required_gap)}"
           f"   (SRSS {length(rules['srss'])}, ABS {length(rules['abs'])}, DDC {length(rules['ddc'])})")
+    if capacity is not None:
+        exceed = f"{100 * (1 - result.target_probability):g} %"
+        print(f"  gap for P(F_max > {force_text(capacity)}) <= {exceed}   {length(gap_for_capacity)}   (a force the contact "
+              f"can take, instead of no contact at all)")
     accuracy = result.measured_accuracy if check is None else result.accuracy.statement(with_verdict=True)
     print(f"  accuracy                  {accuracy}")
     print("paper (Rahimi & Soltani 2016)")
@@ -228,7 +239,26 @@ def _estimate(args) -> int:
         for line in (*check.sentences(force_text, length), check.fractile_sentence(force_text)):
             if line:
                 print(line)
+    if at_capacity_gap is not None:
+        low, high = at_capacity_gap["probability_exceeding_interval"]
+        target = 1 - result.target_probability
+        verdict = "holds" if low <= target else "does not hold: widen the gap"
+        print(f"At the gap for {force_text(capacity)}, {length(gap_for_capacity)}: {100 * at_capacity_gap['probability_exceeding']:.1f} % "
+              f"of {at_capacity_gap['records']} records exceed it (95 % interval {100 * low:.1f} % to {100 * high:.1f} %); "
+              f"the target of {100 * target:g} % {verdict}.")
     return 0
+
+
+def _capacity_gap_check(case, gap: float, capacity: float, check) -> dict:
+    """The Monte Carlo at the gap for a capacity (the check's records and seed; a recorded suite's own records): the
+    fraction of records whose F_max exceeds ``capacity`` [N], its 95 % Wilson interval and the records."""
+    from dataclasses import replace
+
+    from pounding.simulation.monte_carlo import simulate
+
+    at_gap = replace(case, contact=replace(case.contact, gap=gap))
+    study = simulate(at_gap) if case.recorded else simulate(at_gap, records=check.records, seed=check.seed)
+    return {"gap": gap, "records": study.n_records, **study.exceedance(capacity)}
 
 
 def _check(case, result, args):

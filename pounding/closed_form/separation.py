@@ -62,6 +62,13 @@ class CodeCheck:
     met: bool
     rule: str
     assumption: str
+    short_rule: str = ""
+    """The rule in a few words, for a line of text."""
+
+    @property
+    def title(self) -> str:
+        """The code and its clause as a line names them ("EN 1998-1 4.4.2.7(3)", "DDC rule")."""
+        return self.code if self.code == "DDC rule" else f"{self.code} {self.clause.split(' (')[0]}"
 
     def to_dict(self) -> dict:
         """JSON-ready, SI units (``required_gap`` in m)."""
@@ -83,11 +90,12 @@ def code_checks(rules: dict, gap: float) -> tuple[CodeCheck, ...]:
         CodeCheck("EN 1998-1", "4.4.2.7(3)", srss, gap >= srss,
                   "square root of the sum of the squares (SRSS) of the two buildings' peak displacements at the "
                   "level of contact", _PEAKS + " in place of d_s = q_d d_e (4.3.4); 4.4.2.7(4)'s factor 0.7 for "
-                  "floors at equal heights is not applied"),
+                  "floors at equal heights is not applied", "SRSS of the peak displacements"),
         CodeCheck("ASCE 7-16", "12.12.3 (Eq. 12.12-2)", srss, gap >= srss,
                   "delta_MT = sqrt(delta_M1^2 + delta_M2^2), the buildings' maximum inelastic displacements",
-                  _PEAKS + " in place of delta_M = C_d delta_max / I_e (Eq. 12.12-1)"),
+                  _PEAKS + " in place of delta_M = C_d delta_max / I_e (Eq. 12.12-1)", "delta_MT, the SRSS of delta_M"),
         CodeCheck("DDC rule", "Jeng et al. (1992), Penzien (1997)", ddc, gap >= ddc,
                   "double difference combination: sqrt(u1^2 + u2^2 - 2 rho u1 u2), rho the floors' correlation",
-                  _PEAKS + f"; rho = {rules['displacement_correlation']:.2f} from the linearized pair"),
+                  _PEAKS + f"; rho = {rules['displacement_correlation']:.2f} from the linearized pair",
+                  "double difference combination"),
     )
