@@ -187,3 +187,24 @@ def test_report_command_checks_on_its_records_and_adds_gap_points(tmp_path, caps
 def test_gap_points_need_records(capsys):
     assert main(["report", SECTION5, "-o", "/tmp/unused-report.html", "--gap-points", "3"]) == 2
     assert "--gap-points" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("gap_factor, adequate", [(None, False), (1.01, True)])
+def test_the_report_opens_on_the_codes_clauses_and_says_whether_the_gap_is_adequate(tmp_path, gap_factor, adequate):
+    """Issue 34: the summary starts with each code's clause for the gap entered (met or not, the separation
+    required) and one plain sentence on whether the gap entered is adequate, against the gap the report stands
+    behind; a gap just above that is adequate."""
+    from pounding.report.summary import code_checks_html, gap_sentence
+
+    case = load_case("section5-T2-0.4")
+    snapshot = compute_snapshot(case)
+    if gap_factor is not None:
+        case = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=gap_factor * snapshot.estimate.required_gap))
+        snapshot = compute_snapshot(case)
+    sentence = gap_sentence(snapshot)
+    assert ("is adequate" if adequate else "is not adequate") in sentence
+    clauses = code_checks_html(snapshot)
+    assert clauses.count("<li") == 3 and ("not met" in clauses) is (not all(c.met for c in snapshot.estimate.code_checks))
+    text = write_report(tmp_path / "r.html", snapshot).read_text()
+    summary = text[text.index("1. Summary"):]
+    assert summary.index("EN 1998-1 4.4.2.7(3)") < summary.index(html.escape(sentence)) < summary.index("stands behind")

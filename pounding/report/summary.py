@@ -18,7 +18,7 @@ from pounding.report.snapshot import MonteCarloPoint, Snapshot
 from pounding.simulation.plan import MonteCarloPlan
 from pounding.studies.check import EstimateCheck, check_estimate, unpounded_bound
 
-__all__ = ["MonteCarloCheck", "matching_study", "monte_carlo_check", "summary_rows", "summary_html", "verdict_html",
+__all__ = ["MonteCarloCheck", "code_checks_html", "gap_sentence", "matching_study", "monte_carlo_check", "summary_rows", "summary_html", "verdict_html",
            "with_check"]
 
 
@@ -139,9 +139,34 @@ def _check_rows(check: EstimateCheck, d: Display) -> list[tuple[str, str, str]]:
     ]
 
 
+def gap_sentence(snapshot: Snapshot, units: str = "SI") -> str:
+    """Whether the gap entered is adequate, in one plain sentence: against the gap the tool stands behind for the
+    target probability of no pounding (the check's answer when made, else the closed form's)."""
+    d, e = display(units), snapshot.estimate
+    needed = snapshot.check.gap_answer if snapshot.check is not None else e.required_gap
+    entered = snapshot.case.contact.gap
+    verdict = "is adequate" if entered >= needed else "is not adequate"
+    return (f"The gap entered, {d.length(entered)}, {verdict} for {100 * e.target_probability:g} % probability of no "
+            f"pounding: that takes {d.length(needed)}.")
+
+
+def code_checks_html(snapshot: Snapshot, units: str = "SI") -> str:
+    """Each design code's separation rule against the gap entered, in the code's words, and what stands in for the
+    code's displacements (:attr:`~pounding.closed_form.estimator.Estimate.code_checks`)."""
+    d, gap = display(units), snapshot.case.contact.gap
+    lines = "".join(
+        f'<li class="code-check {"met" if c.met else "not-met"}"><b>{html.escape(c.title)}</b>: required '
+        f'{html.escape(d.length(c.required_gap))} ({html.escape(c.short_rule)}); entered {html.escape(d.length(gap))}: '
+        f'<b>{"met" if c.met else "not met"}</b>.</li>' for c in snapshot.estimate.code_checks)
+    note = ("The codes' displacements are design values; here the closed form's expected peak displacements of each "
+            "contact floor take their place (EN 1998-1 4.4.2.7(4)'s factor 0.7 not applied).")
+    return f'<ul class="code-checks">{lines}</ul><p class="code-note"><i>{html.escape(note)}</i></p>'
+
+
 def summary_html(snapshot: Snapshot, units: str = "SI") -> str:
-    """The verdict (:func:`verdict_html`, when the snapshot has its check), the summary table, and the estimator's
-    warnings below it."""
+    """The codes' clauses for the gap entered (:func:`code_checks_html`), whether the gap is adequate
+    (:func:`gap_sentence`), the verdict (:func:`verdict_html`, when the snapshot has its check), the summary table,
+    and the estimator's warnings below it."""
     cells = []
     for quantity, value, note in summary_rows(snapshot, units):
         css = "number"
@@ -151,7 +176,8 @@ def summary_html(snapshot: Snapshot, units: str = "SI") -> str:
                      f"<td>{html.escape(note)}</td></tr>")
     warnings = "".join(f'<p class="warning">&#9888; {html.escape(w)}</p>' for w in snapshot.estimate.warnings)
     verdict = verdict_html(snapshot, units) if snapshot.check is not None else ""
-    return (verdict + '<table class="summary"><thead><tr><th>quantity</th><th>value</th><th>note</th></tr></thead><tbody>'
+    adequate = f'<p class="gap-adequate"><b>{html.escape(gap_sentence(snapshot, units))}</b></p>'
+    return (code_checks_html(snapshot, units) + adequate + verdict + '<table class="summary"><thead><tr><th>quantity</th><th>value</th><th>note</th></tr></thead><tbody>'
             + "".join(cells) + "</tbody></table>" + warnings)
 
 
