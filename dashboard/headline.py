@@ -156,6 +156,8 @@ def headline_html(result, units: str = "SI", capacity: float | None = None, mont
     if capacity is not None:
         numbers.append(_number(f"{100 * result.probability_exceeding(capacity):.3g} %", f"P(F<sub>max</sub> &gt; {shown.force(capacity)})",
                                "p-exceed"))
+        numbers.append(_number(shown.length(result.gap_for_capacity(capacity)), f"gap for P(F<sub>max</sub> &gt; "
+                               f"{shown.force(capacity)}) &le; {100 * (1 - result.target_probability):.4g} %", "gap-capacity"))
     lines = [_check_line(check, units, checking, check_error)]
     done = {"monte_carlo", "design_gap"} if check is not None else set()  # the check is the study the advice asks for
     if monte_carlo is not None:
@@ -173,8 +175,16 @@ def headline_html(result, units: str = "SI", capacity: float | None = None, mont
     # beside a verdict the measured range is stated in full, however wide (pounding.closed_form.regimes.SIGNABLE_ERROR)
     accuracy = result.measured_accuracy if check is None else result.accuracy.statement(with_verdict=True)
     lines.append(f'<p class="accuracy">{html.escape(accuracy)}</p>')
-    return (f'<div class="headline">{held}{f"<b>{html.escape(name)}</b>" if name else ""}<div class="numbers">{"".join(numbers)}</div>'
-            + "".join(lines) + _details(result, shown) + "</div>")
+    return (f'<div class="headline">{held}{code_clauses_line(result, shown)}{f"<b>{html.escape(name)}</b>" if name else ""}'
+            f'<div class="numbers">{"".join(numbers)}</div>' + "".join(lines) + _details(result, shown) + "</div>")
+
+
+def code_clauses_line(result, shown) -> str:
+    """The codes' separation rules against the gap entered, in one line: the headline's first."""
+    gap = shown.length(result.case.contact.gap)
+    parts = [f'{html.escape(c.title)}: {html.escape(shown.length(c.required_gap))} required, <b>{"met" if c.met else "not met"}</b>'
+             for c in result.code_checks]
+    return f'<p class="code-clauses">Codes, for the {html.escape(gap)} entered: {"; ".join(parts)}.</p>' 
 
 
 def _details(result, shown) -> str:

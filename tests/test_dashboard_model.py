@@ -3,6 +3,7 @@ file, bad inputs are named, the newest request wins, and the studies run, cancel
 
 from __future__ import annotations
 
+import dataclasses
 import threading
 import time
 import tomllib
@@ -402,3 +403,21 @@ def test_a_fema_p695_set_scaled_to_the_design_spectrum_is_the_librarys_and_shows
     titles = [pane.object.title.text for pane in panel.objects[1:]]
     assert "14 records scaled to the design spectrum (each-record)" in titles[0] and "periodogram" in titles[1]
     assert "FEMA P695 near-field-pulse set" in panel.objects[0].object
+
+
+def test_the_headline_opens_on_the_codes_clauses_and_gives_the_gap_for_the_capacity():
+    """Issue 34: the headline's first line is each code's clause for the gap entered (met or not), and beside
+    P(F_max > capacity) stands the gap sized to that capacity, the library's."""
+    import re
+
+    from pounding import estimate, load_case
+
+    result = estimate(load_case("section5-T2-0.4"))
+    page = headline_html(result, capacity=4.1e5)
+    first = re.search(r'<div class="headline">(<p class="code-clauses">.*?</p>)', page)
+    assert first and all(c.title in first.group(1) for c in result.code_checks) and "not met" in first.group(1)
+    gap = re.search(r"<span class=\"value gap-capacity\">([\d.,]+) mm</span>", page)
+    shown = float(gap.group(1).replace(",", "")) / 1e3
+    assert shown == pytest.approx(result.gap_for_capacity(4.1e5), abs=6e-5)  # as shown, to the 0.01 mm printed
+    wide = dataclasses.replace(result.case, contact=dataclasses.replace(result.case.contact, gap=0.3))
+    assert "not met" not in re.search(r'<p class="code-clauses">.*?</p>', headline_html(estimate(wide))).group(0)
