@@ -192,12 +192,12 @@ def _details(result, shown) -> str:
     paper = result.paper
     rules = result.separation_rules
     rows = [
-        ("sigma of the relative displacement X", shown.length(result.sigma_relative_displacement)),
-        ("sigma of the relative velocity V", shown.velocity(result.sigma_relative_velocity)),
+        ("RMS relative displacement of the contact floors", shown.length(result.sigma_relative_displacement)),
+        ("RMS relative velocity of the contact floors", shown.velocity(result.sigma_relative_velocity)),
         ("expected number of impacts", f"{result.impacts_expected:.3g}"),
         ("expected largest approach speed", shown.velocity(result.relative_velocity_expected)),
         ("95th percentile of F<sub>max</sub>", shown.force(result.force_max_distribution.quantile(0.95))),
-        ("paper's estimate (Eq. 12-30)", shown.force(paper.force_expected)),
+        ("the paper's estimate (Rahimi & Soltani 2016)", shown.force(paper.force_expected)),
         ("gap by SRSS / ABS / DDC", f"{shown.length(rules['srss'])} / {shown.length(rules['abs'])} / {shown.length(rules['ddc'])}"),
         ("regime of the estimate", html.escape(result.accuracy_regime)),
     ]

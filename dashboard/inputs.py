@@ -64,10 +64,10 @@ class BuildingInputs(param.Parameterized):
     damping_ratio = param.Number(0.05, bounds=(0.0, 0.3), label="damping ratio [-]",
                                  doc="Viscous damping ratio of the first mode (stiffness-proportional for several storeys).")
     hysteresis = param.Selector(default="yield drift", objects=list(HYSTERESIS_FORMS), label="storeys given by",
-                                doc="Yield drift or yield force with a post-yield ratio (Bouc-Wen, G28), elastic, "
+                                doc="Yield drift or yield force with a post-yield ratio (Bouc-Wen), elastic, "
                                 "or the raw Bouc-Wen parameters (advanced).")
     yield_drift = param.Number(0.01, bounds=(0.0, None), inclusive_bounds=(False, True), label="yield drift",
-                               doc="Storey drift at yield (the Bouc-Wen yield displacement, Eq. 33).")
+                               doc="Storey drift at yield (the Bouc-Wen yield displacement).")
     yield_force = param.Number(1e4, bounds=(0.0, None), inclusive_bounds=(False, True), label="yield force",
                                doc="Storey shear at yield; the yield drift is this over the storey stiffness.")
     post_yield_ratio = param.Number(0.05, bounds=(0.0, 1.0), inclusive_bounds=(True, False), label="post-yield ratio [-]",
@@ -107,13 +107,13 @@ class CaseInputs(param.Parameterized):
     component = param.Selector(default="both", objects=["both", 1, 2], label="components",
                                doc="Both horizontal components of each record (as FEMA P695 uses them), or the first or second.")
     intensity = param.Selector(default="PGA", objects=list(INTENSITY_FORMS), label="intensity by",
-                               doc="The expected peak ground acceleration of the records (G30), or the white-noise intensity G0.")
+                               doc="The expected peak ground acceleration of the records, or the white-noise intensity G0.")
     pga = param.Number(0.3, bounds=(0.0, 5.0), inclusive_bounds=(False, True), label="expected PGA [g]",
                        doc="Expected peak ground acceleration of the records, in g.")
     G0 = param.Number(6.503e-3, bounds=(0.0, None), inclusive_bounds=(False, True), label="G0",
-                      doc="Two-sided white-noise intensity of the Kanai-Tajimi filter (Eq. 7).")
-    omega_g = param.Number(27.02, bounds=(0.5, 200.0), label="omega_g [rad/s]", doc="Ground filter frequency (Eq. 7).")
-    xi_g = param.Number(0.34, bounds=(0.01, 5.0), label="xi_g [-]", doc="Ground filter damping ratio (Eq. 7).")
+                      doc="Two-sided white-noise intensity of the Kanai-Tajimi ground filter.")
+    omega_g = param.Number(27.02, bounds=(0.5, 200.0), label="omega_g [rad/s]", doc="Ground filter frequency.")
+    xi_g = param.Number(0.34, bounds=(0.01, 5.0), label="xi_g [-]", doc="Ground filter damping ratio.")
     code = param.Selector(default="EN 1998-1", objects=list(DESIGN_CODE_KEYS), label="design code",
                           doc="EN 1998-1 (3.2.2.2) or ASCE 7-16 (11.4.6).")
     ag = param.Number(0.25, bounds=(0.0, 3.0), inclusive_bounds=(False, True), label="design ground acceleration ag [g]",
@@ -134,9 +134,9 @@ class CaseInputs(param.Parameterized):
                                doc="Every record scaled to this peak ground acceleration, in g.")
     duration = param.Number(20.0, bounds=(1.0, 200.0), label="duration [s]", doc="Length of the synthetic records.")
     envelope = param.Selector(default="none", objects=["none", "shinozuka-sato"], label="envelope",
-                              doc="Stationary records, or modulated by the Shinozuka-Sato envelope (Eq. 9).")
-    B1 = param.Number(0.085, bounds=(0.001, 5.0), label="envelope B1 [1/s]", doc="Shinozuka-Sato decay constant B1 (Eq. 9), below B2.")
-    B2 = param.Number(0.17, bounds=(0.002, 10.0), label="envelope B2 [1/s]", doc="Shinozuka-Sato decay constant B2 (Eq. 9), above B1.")
+                              doc="Stationary records, or modulated by the Shinozuka-Sato envelope.")
+    B1 = param.Number(0.085, bounds=(0.001, 5.0), label="envelope B1 [1/s]", doc="Shinozuka-Sato decay constant B1, below B2.")
+    B2 = param.Number(0.17, bounds=(0.002, 10.0), label="envelope B2 [1/s]", doc="Shinozuka-Sato decay constant B2, above B1.")
 
     gap = param.Number(0.01, bounds=(0.0, None), label="gap", doc="Separation of the contact floors at rest.")
     target_probability = param.Number(defaults.TARGET_PROBABILITY, bounds=(0.5, 0.9999), label="target P(no pounding) [-]",

@@ -333,18 +333,18 @@ def _validate(args) -> int:
                           "assumptions": list(ASSUMPTIONS), "readings_measured": READINGS_MEASURED, "units": {"force": "N"}}))
         return 0
 
-    def mn(value):
-        return "   n/a" if value is None else f"{value / 1e6:6.3f}"
+    def kn(value):  # the display unit of every force printed (the paper prints MN: 0.285 MN is 285.0 kN)
+        return "     n/a" if value is None else f"{value / 1e3:8.1f}"
 
-    print(f"Expected extreme pounding force [MN]; Monte Carlo: {args.records} records, seed {args.seed}.")
+    print(f"Expected extreme pounding force [kN]; Monte Carlo: {args.records} records, seed {args.seed}.")
     current = None
     for row in rows:
         if (row.table, row.reading) != current:
             current = (row.table, row.reading)
             print(f"\n{row.table}, excitation {row.reading}")
             print("  T1, T2 (s)   paper exact  paper proposed | Monte Carlo (+- s.e.)  paper's method  recommended")
-        print(f"  1.2, {row.period_2:.1f}      {mn(row.paper_exact)}       {mn(row.paper_proposed)}    |"
-              f"  {mn(row.monte_carlo)} +- {row.monte_carlo_std_error / 1e6:.3f}      {mn(row.paper_estimator)}       {mn(row.recommended_estimator)}")
+        print(f"  1.2, {row.period_2:.1f}    {kn(row.paper_exact)}     {kn(row.paper_proposed)}    |"
+              f"  {kn(row.monte_carlo)} +- {row.monte_carlo_std_error / 1e3:.1f}    {kn(row.paper_estimator)}     {kn(row.recommended_estimator)}")
     print("\nAssumptions where the paper is silent or misprinted:")
     for line in ASSUMPTIONS:
         print(f"  - {line}")
