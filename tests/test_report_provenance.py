@@ -220,3 +220,19 @@ def test_pounding_report_names_its_source_and_command(tmp_path, capsys):
     assert main(["report", PRESET, "-o", str(tmp_path / "p.html"), "--units", "kgf-cm-s"]) == 0
     text = _visible((tmp_path / "p.html").read_text())
     assert "with no modification" in text and f"pounding report {PRESET} -o" in text
+
+
+@pytest.mark.slow
+def test_the_changes_of_an_si_case_are_in_the_reports_mm_and_kn_without_e_notation(tmp_path):
+    """Issue 34: the 'changed from the preset' table of an SI report was in m and N/m with e-notation while the rest
+    of the report is in mm and kN: lengths and forces now in mm and kN, large numbers grouped, never 2.75e+09."""
+    after = preset_data()
+    after["contact"]["gap"] = 5.0  # cm in the preset's kgf-cm-s
+    after["contact"]["stiffness"] = 2.0e6  # kgf/cm^1.5
+    provenance = case_provenance(after, PRESET, units="SI")
+    snapshot = compute_snapshot(case_from_dict(after, name=PRESET))
+    text = _visible(write_report(tmp_path / "r.html", snapshot, "SI", provenance=provenance).read_text())
+    table = text[text.index("Changed from the preset"):text.index("parameter value unit")]
+    assert re.search(r"contact\.gap 10 50 mm", table), table
+    assert not re.search(r"\de[+-]\d", table), table
+    assert re.search(r"contact\.stiffness [\d,]+ [\d,]+ N/m\^1\.5", table), table

@@ -40,7 +40,7 @@ def input_rows(case: Case, units: str = "SI", terms: dict | None = None) -> list
     for number, building in enumerate(case.buildings, start=1):
         rows.append(f"Building {number}")
         rows += [("storeys", str(building.n_storeys), "-"),
-                 ("fundamental period T1", _number(building.periods[0]), "s"),
+                 (f"fundamental period T{number}", _number(building.periods[0]), "s"),
                  ("damping ratio", f"{building.damping_ratio:g}", "-")]
         for level, storey in enumerate(building.storeys, start=1):
             law, derived = storey.bouc_wen, storeys[(number, level)]

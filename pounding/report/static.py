@@ -104,8 +104,9 @@ def changes_html(provenance: ReportProvenance) -> str:
         return ""
     rows = "".join(
         f"<tr><td>{html.escape(key_label(c.key))}<br><code>{html.escape(c.key)}</code></td>"
-        f'<td class="value">{html.escape(_value(c.before))}</td><td class="value">{html.escape(_value(c.after))}</td>'
-        f"<td>{html.escape(c.unit)}</td></tr>"
+        f'<td class="value">{html.escape(_value(_shown(c.before, c.unit)[0]))}</td>'
+        f'<td class="value">{html.escape(_value(_shown(c.after, c.unit)[0]))}</td>'
+        f"<td>{html.escape(_shown(None, c.unit)[1])}</td></tr>"
         for c in provenance.changes
     )
     return (f"<h3>Changed from the preset {html.escape(provenance.preset)}</h3>"
@@ -113,13 +114,32 @@ def changes_html(provenance: ReportProvenance) -> str:
             f"<th>unit</th></tr></thead><tbody>{rows}</tbody></table>")
 
 
+_SHOWN_UNITS = {"m": ("mm", 1e3), "N": ("kN", 1e-3)}
+"""The case file's SI lengths and forces in the report's display units (mm, kN), as the rest of the report."""
+
+
+def _shown(value, unit: str):
+    """``value`` in ``unit`` (the case file's) and its unit, lengths and forces in the report's mm and kN."""
+    shown, factor = _SHOWN_UNITS.get(unit, (unit, 1.0))
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        value = value * factor
+    elif isinstance(value, list):
+        value = [v * factor if isinstance(v, (int, float)) and not isinstance(v, bool) else v for v in value]
+    return value, shown
+
+
 def _value(value) -> str:
+    """A value as a person reads it: up to 6 significant digits, thousands grouped, no e-notation from 1e-3 to 1e15."""
     if value is None:
         return "not given"
     if isinstance(value, list):
         return ", ".join(_value(v) for v in value)
     if isinstance(value, float):
-        return f"{value:.6g}"
+        magnitude = abs(value)
+        if value == 0.0 or not 1e-3 <= magnitude < 1e15:
+            return f"{value:.6g}"
+        decimals = max(0, 5 - math.floor(math.log10(magnitude)))
+        return f"{value:,.{decimals}f}".rstrip("0").rstrip(".") if decimals else f"{value:,.0f}"
     return str(value)
 
 
