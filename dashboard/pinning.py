@@ -29,6 +29,7 @@ PINNED_CSS = """
 .headline table.pinned { border-collapse: collapse; margin: 2px 0 6px; font-size: 13px; width: 100%; }
 .headline table.pinned th, .headline table.pinned td { padding: 1px 6px; text-align: left; border-bottom: 1px solid #e4e4e4; }
 .headline table.pinned td.pinned-value { color: #a35200; }
+.headline table.pinned td.pinned-value, .headline table.pinned td.current-value { white-space: nowrap; }
 .headline table.pinned td.change { font-weight: 700; }
 .headline p.pinned-note { font-size: 12px; color: #555; margin: 0 0 6px; }
 """

@@ -77,4 +77,5 @@ def test_one_chart_holds_both_force_against_gap_curves(states):
     assert list(lines["pinned"]["y"]) == pytest.approx(pinned.gap_curve.force_expected / 1e3)
     assert list(lines["current"]["y"]) == pytest.approx(current.gap_curve.force_expected / 1e3)
     assert list(lines["current"]["x"]) == pytest.approx(current.gap_curve.gaps / 1e-3)
-    assert plot.legend[0].items[0].renderers[0].glyph.line_dash == [6]  # the pinned state dashed
+    dashes = {item.label.value: item.renderers[0].glyph.line_dash for item in plot.legend[0].items}
+    assert dashes["pinned"] == [6] and dashes["current"] == []  # the pinned state dashed

@@ -94,10 +94,10 @@ def differences(pinned: Estimate, current: Estimate) -> tuple[Difference, ...]:
         f"{100 * current.target_probability:.4g} %"
     return (
         Difference("expected extreme force", "force", pinned.force_expected, current.force_expected),
-        Difference("84th percentile of the extreme force", "force", pinned.force_max_distribution.quantile(0.84),
+        Difference("84th percentile of the force", "force", pinned.force_max_distribution.quantile(0.84),
                    current.force_max_distribution.quantile(0.84)),
         Difference("probability of pounding", "probability", pinned.pounding_probability, current.pounding_probability),
-        Difference(f"gap needed for {target} no pounding", "length", pinned.required_gap, current.required_gap),
+        Difference(f"gap for {target} no pounding", "length", pinned.required_gap, current.required_gap),
     )
 
 
@@ -131,6 +131,12 @@ def input_differences(pinned: Estimate, current: Estimate, units: str = "SI") ->
 # --- the charts ------------------------------------------------------------------------------------------
 
 
+def _drawn(pinned: Snapshot, current: Snapshot):
+    """The states in the order drawn, with their style: the pinned one, dashed, over the current one (where they are
+    one curve, the dashes show on it)."""
+    return ((COMPARISON_NAMES[1], current, {"color": "#1f77b4", "line_width": 2}), (COMPARISON_NAMES[0], pinned, _PINNED_STYLE))
+
+
 def _gap_chart(pinned: Snapshot, current: Snapshot, shown: Display):
     """Both states' expected extreme force against the gap, each state's own gap marked."""
     from bokeh.plotting import figure
@@ -138,8 +144,7 @@ def _gap_chart(pinned: Snapshot, current: Snapshot, shown: Display):
     plot = figure(title="Expected extreme force against the gap", x_axis_label=f"gap [{shown.length_unit}]",
                   y_axis_label=f"expected extreme force [{shown.force_unit}]", height=340, width=FIGURE_WIDTH,
                   output_backend="canvas", tools="pan,wheel_zoom,box_zoom,reset,save,hover")
-    for name, snapshot, style in ((COMPARISON_NAMES[0], pinned, _PINNED_STYLE),
-                                  (COMPARISON_NAMES[1], current, {"color": "#1f77b4", "line_width": 2})):
+    for name, snapshot, style in _drawn(pinned, current):
         curve = snapshot.gap_curve
         plot.line(curve.gaps / shown.length_scale, curve.force_expected / shown.force_scale, legend_label=name, **style)
         plot.scatter([snapshot.case.contact.gap / shown.length_scale], [snapshot.estimate.force_expected / shown.force_scale],
@@ -156,8 +161,7 @@ def _distribution_chart(pinned: Snapshot, current: Snapshot, shown: Display):
     plot = figure(title="Distribution of the extreme pounding force", x_axis_label=f"F_max [{shown.force_unit}]",
                   y_axis_label="P(F_max <= f) [-]", y_range=(-0.02, 1.02), height=300, width=FIGURE_WIDTH,
                   output_backend="canvas", tools="pan,wheel_zoom,box_zoom,reset,save,hover")
-    for name, snapshot, style in ((COMPARISON_NAMES[0], pinned, _PINNED_STYLE),
-                                  (COMPARISON_NAMES[1], current, {"color": "#1f77b4", "line_width": 2})):
+    for name, snapshot, style in _drawn(pinned, current):
         forces, cdf = distribution_points(snapshot.estimate)
         plot.line(forces / shown.force_scale, cdf, legend_label=name, **style)
     top = max(s.estimate.force_max_distribution.quantile(0.999) for s in (pinned, current))
@@ -179,6 +183,7 @@ def distribution_points(estimate: Estimate) -> tuple[np.ndarray, np.ndarray]:
 _COMPARISON_CSS = """
 .comparison td.change { font-weight: 600; }
 .comparison td.pinned { color: #a35200; }
+.comparison.numbers td.pinned, .comparison.numbers td.current { white-space: nowrap; }
 """
 
 
@@ -225,7 +230,8 @@ def comparison_html(pinned: Snapshot, current: Snapshot, units: str = "SI", titl
         '<section class="inputs"><h2>2. Inputs that differ</h2>' + _inputs_html(pinned, current, units) + "</section>"
         '<section class="figures"><h2>3. Figures</h2>'
         f'<figure>{divs[0]}<figcaption>Figure 1. Expected extreme force against the gap: pinned (dashed), current '
-        "(solid); the dots are each state's own gap.</figcaption></figure>"
+        "(solid); the dots are each state's own gap. A change of the gap alone moves the dot along one curve."
+        "</figcaption></figure>"
         f"<figure>{divs[1]}<figcaption>Figure 2. Probability that the largest pounding force of a record stays below "
         "f: pinned (dashed), current (solid).</figcaption></figure></section>"
     )
