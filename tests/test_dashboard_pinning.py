@@ -44,7 +44,7 @@ def test_pin_keeps_the_estimate_and_a_new_gap_is_compared_with_the_librarys_numb
     assert force.pinned == pytest.approx(pinned.force_expected, rel=1e-9)
     assert force.current == pytest.approx(current.force_expected, rel=1e-9)
     assert force.change == pytest.approx(current.force_expected - pinned.force_expected, rel=1e-6)
-    assert force.relative == pytest.approx(current.force_expected / pinned.force_expected - 1, rel=1e-6)
+    assert force.relative_change == pytest.approx(current.force_expected / pinned.force_expected - 1, rel=1e-6)
     assert force.change < 0  # a wider gap: a smaller expected force
     assert f84.change == pytest.approx(current.force_max_distribution.quantile(0.84) - pinned.force_max_distribution.quantile(0.84), rel=1e-6)
     assert probability.change == pytest.approx(current.pounding_probability - pinned.pounding_probability, rel=1e-6, abs=1e-12)
@@ -54,7 +54,7 @@ def test_pin_keeps_the_estimate_and_a_new_gap_is_compared_with_the_librarys_numb
     text = headline_html(model.result, "SI", pinned=pinned_html(model.pinned, model.result, "SI"))
     change = force.change / 1e3
     assert _cells(text, "pin-force") == [shown.force(pinned.force_expected), shown.force(current.force_expected),
-                                         f"{change:.4g} kN ({100 * force.relative:+.3g} %)"]
+                                         f"{change:.4g} kN ({100 * force.relative_change:+.3g} %)"]
     assert ">pinned<" in text and ">current<" in text and f"Pinned: {DEFAULT}." in text
 
 

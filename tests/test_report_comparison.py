@@ -27,7 +27,7 @@ def states():
 def test_the_change_is_current_minus_pinned_with_its_unit_and_percent():
     shown = display("SI")
     force = Difference("expected extreme force", "force", 200e3, 150e3)
-    assert force.change == -50e3 and force.relative == pytest.approx(-0.25)
+    assert force.change == -50e3 and force.relative_change == pytest.approx(-0.25)
     assert force.change_text(shown) == "-50 kN (-25 %)"
     assert Difference("gap", "length", 0.1, 0.125).change_text(shown) == "+25 mm (+25 %)"
     assert Difference("p", "probability", 0.4, 0.5).change_text(shown) == "+10 percentage points (+25 %)"

@@ -59,7 +59,7 @@ class Difference:
         return self.current - self.pinned
 
     @property
-    def relative(self) -> float:
+    def relative_change(self) -> float:
         """The change over the pinned value [-]; nan when the pinned value is 0."""
         return self.change / self.pinned if self.pinned != 0 else math.nan
 
@@ -81,7 +81,7 @@ class Difference:
         else:
             absolute = self.value_text(change, shown)
             absolute = absolute if absolute.startswith(("-", "n/a")) else f"+{absolute}"
-        relative = self.relative
+        relative = self.relative_change
         if math.isfinite(relative):
             return f"{absolute} ({100 * relative:+.3g} %)"
         return f"{absolute} (from zero)"
