@@ -66,6 +66,8 @@ def test_the_comparison_page_holds_both_states_and_their_change(states, tmp_path
     assert "Pinned: before. Current: after." in text
     assert "<td>Contact, gap</td>" in text
     assert "<script src=" not in text and 'rel="stylesheet"' not in text  # opens offline
+    visible = re.sub(r"<(script|style)\b[^>]*>.*?</\1>", "", text, flags=re.S)
+    assert not re.search(r"sigma|\bEqs?\.|\(G\d+\)", visible)  # plain words: no symbol or equation label
 
 
 def test_one_chart_holds_both_force_against_gap_curves(states):
