@@ -118,7 +118,8 @@ def _check_line(check, units: str, checking: bool, check_error: str) -> str:
 
 
 def headline_html(result, units: str = "SI", capacity: float | None = None, monte_carlo=None, design_gap=None,
-                  name: str = "", check=None, checking: bool = False, check_error: str = "", held: str = "") -> str:
+                  name: str = "", check=None, checking: bool = False, check_error: str = "", held: str = "",
+                  pinned: str = "") -> str:
     """The headline of an :class:`~pounding.closed_form.estimator.Estimate` ``result``; ``capacity`` [N] adds P(F_max > capacity);
     ``monte_carlo`` a :class:`~pounding.report.MonteCarloPoint` of exactly this case, ``design_gap`` its Monte Carlo
     design gap, each when run. ``check``, the :class:`~pounding.studies.check.EstimateCheck` of exactly ``result``,
@@ -126,7 +127,8 @@ def headline_html(result, units: str = "SI", capacity: float | None = None, mont
     form's beside it), and so are the 84th percentile where the check stands behind the records' fractiles and the
     gap where the records need a wider one; the measured accuracy is then stated in full.
     Without it, ``checking`` says that the check runs, ``check_error`` why it failed. ``held`` (:func:`held_note`)
-    comes first: the numbers are of the last inputs taken."""
+    comes first: the numbers are of the last inputs taken. ``pinned`` (:func:`dashboard.pinning.pinned_html`), the
+    comparison with a pinned state, follows the name."""
     shown = display(units)
     case = result.case
     distribution = result.force_max_distribution
@@ -176,7 +178,7 @@ def headline_html(result, units: str = "SI", capacity: float | None = None, mont
     accuracy = result.measured_accuracy if check is None else result.accuracy.statement(with_verdict=True)
     lines.append(f'<p class="accuracy">{html.escape(accuracy)}</p>')
     return (f'<div class="headline">{held}{code_clauses_line(result, shown)}{f"<b>{html.escape(name)}</b>" if name else ""}'
-            f'<div class="numbers">{"".join(numbers)}</div>' + "".join(lines) + _details(result, shown) + "</div>")
+            f'{pinned}<div class="numbers">{"".join(numbers)}</div>' + "".join(lines) + _details(result, shown) + "</div>")
 
 
 def code_clauses_line(result, shown) -> str:
@@ -184,7 +186,7 @@ def code_clauses_line(result, shown) -> str:
     gap = shown.length(result.case.contact.gap)
     parts = [f'{html.escape(c.title)}: {html.escape(shown.length(c.required_gap))} required, <b>{"met" if c.met else "not met"}</b>'
              for c in result.code_checks]
-    return f'<p class="code-clauses">Codes, for the {html.escape(gap)} entered: {"; ".join(parts)}.</p>' 
+    return f'<p class="code-clauses">Codes, for the {html.escape(gap)} entered: {"; ".join(parts)}.</p>'
 
 
 def _details(result, shown) -> str:

@@ -28,6 +28,7 @@ import param
 from dashboard.case_form import case_file_of_inputs, chain_stiffness, inputs_of_case
 from dashboard.inputs import BuildingInputs, CaseInputs, input_names
 from dashboard.messages import message
+from dashboard.pinning import Pinning
 from dashboard.refusals import refusal
 from dashboard.runner import Latest
 from dashboard.studies import Studies
@@ -64,7 +65,7 @@ def _names_files(records) -> bool:
     entries = records if isinstance(records, list) else [records]
     return not all(isinstance(entry, str) and entry.startswith("fema-p695:") for entry in entries)
 
-class PoundingModel(CaseInputs, Studies):
+class PoundingModel(CaseInputs, Studies, Pinning):
     """Inputs of a case (dimensional ones in the unit system shown) and the results for it."""
 
     preset = param.Selector(default=defaults.CASE, objects=preset_names(), label="case (preset)",

@@ -10,6 +10,7 @@ import numpy as np
 import panel as pn
 
 from dashboard.messages import message
+from dashboard.pinning import overlay_distribution
 from dashboard.runner import Latest
 from pounding.display_units import display
 from pounding.errors import ConvergenceError, InputError, SimulationError
@@ -30,6 +31,7 @@ def distribution_plot(dashboard, snapshot, units: str, capacity: float):
     largest = max((max(m.force_max_values, default=0.0) for m in studies), default=0.0)
     if max(top, largest) > 0:  # the tabulated CDF runs to 10 sigma_V: show where the probability is
         figure.x_range.end = 1.05 * max(top, largest) / display(units).force_scale
+    overlay_distribution(figure, dashboard.model.pinned, units)
     return figure
 
 
@@ -92,7 +94,7 @@ class LazyTabs:
             tabs.append((title, content))
         self.panel = pn.Tabs(*tabs, dynamic=True, sizing_mode="stretch_width", css_classes=["plot-tabs"])
         self.panel.param.watch(lambda _event: self.refresh(), "active")
-        model.param.watch(lambda _event: self.refresh(), "capacity")
+        model.param.watch(lambda _event: self.refresh(), ["capacity", "pinned"])
         model.monte_carlo_job.param.watch(lambda _event: self.refresh(), "result")
 
     def refresh(self) -> None:
@@ -103,7 +105,7 @@ class LazyTabs:
         model = self.dashboard.model
         snapshot = model.snapshot
         kind, holder = self._lazy[index]
-        key = (id(snapshot), model.units, model.capacity, len(model.monte_carlo_points()))
+        key = (id(snapshot), model.units, model.capacity, len(model.monte_carlo_points()), id(model.pinned))
         if snapshot is None or self._shown.get(index) == key:
             return
         self._shown[index] = key

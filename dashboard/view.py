@@ -23,6 +23,7 @@ from dashboard.headline import HEADLINE_CSS, headline_html, held_note
 from dashboard.input_widgets import InputField
 from dashboard.jobs import StudyJob
 from dashboard.model import PoundingModel, input_key
+from dashboard.pinning import PINNED_CSS, PinnedOverlay, pin_controls, pinned_html
 from dashboard.runner import shared_pool
 from dashboard.tabs import LazyTabs
 from dashboard.upload_widget import FileUpload
@@ -154,8 +155,8 @@ class PoundingDashboard(pn.viewable.Viewer):
         self.headline = pn.pane.HTML(
             pn.bind(self._headline, m.param.result, m.param.units, m.param.capacity, m.monte_carlo_job.param.result,
                     m.design_gap_job.param.result, m.param.error, m.check_job.param.result, m.check_job.param.error,
-                    m.param.refused, m.param.waiting),
-            stylesheets=[HEADLINE_CSS], sizing_mode="stretch_width", min_width=380,
+                    m.param.refused, m.param.waiting, m.param.pinned),
+            stylesheets=[HEADLINE_CSS, PINNED_CSS], sizing_mode="stretch_width", min_width=380,
         )
         self.export = pn.widgets.FileDownload(callback=self._export, filename="pounding-report.html", label="Export report (HTML)",
                                               button_type="success", disabled=pn.bind(lambda s: s is None, m.param.snapshot),
@@ -164,12 +165,13 @@ class PoundingDashboard(pn.viewable.Viewer):
         self.figures = Figures()
         self.figures.fill(m.snapshot, m.units, m.monte_carlo_points(), m.current_design_gap())
         self._redraw_pending = False
-        m.param.watch(self._request_redraw, ["snapshot", "units"])
+        m.param.watch(self._request_redraw, ["snapshot", "units", "pinned"])
         for job in (m.monte_carlo_job, m.design_gap_job):
             job.param.watch(self._request_redraw, "result")
         bokeh = lambda fig, **kw: pn.pane.Bokeh(fig, sizing_mode="stretch_width", **kw)  # noqa: E731
         gap_figure = self.figures.gap
         gap_figure.height = 340
+        self.pinned_overlay = PinnedOverlay(gap_figure)
         legend = gap_figure.legend[0]
         legend.label_text_font_size, legend.spacing, legend.padding = "10px", 0, 4
         gap_figure.add_layout(legend, "below")  # under the plot: the plot keeps the width of the page's right half
@@ -188,7 +190,7 @@ class PoundingDashboard(pn.viewable.Viewer):
         ])
         self.main = pn.Column(
             self.error, self.note,
-            pn.Row(pn.Column(self.headline, self.export, width=430), self.gap_plot, sizing_mode="stretch_width"),
+            pn.Row(pn.Column(self.headline, self.export, pin_controls(self), width=430), self.gap_plot, sizing_mode="stretch_width"),
             self.tabs.panel,
             sizing_mode="stretch_width",
         )
@@ -244,7 +246,7 @@ class PoundingDashboard(pn.viewable.Viewer):
 
     # --- outputs -------------------------------------------------------------------
 
-    def _headline(self, result, units, capacity, _points, _design_gap, error, _check, _check_error, refused, waiting) -> str:
+    def _headline(self, result, units, capacity, _points, _design_gap, error, _check, _check_error, refused, waiting, pinned) -> str:
         m = self.model
         held = held_note(list(refused.values()), waiting)
         if result is None:
@@ -254,7 +256,7 @@ class PoundingDashboard(pn.viewable.Viewer):
         check, check_error = m.current_check(), m.check_error()
         return headline_html(result, units, capacity_si, m.monte_carlo_for_current_gap(), m.current_design_gap(), m.case_name(),
                              check=check, checking=m.checks and check is None and not check_error, check_error=check_error,
-                             held=held)
+                             held=held, pinned=pinned_html(pinned, result, units))
 
     def _request_redraw(self, *_events) -> None:
         if not self._redraw_pending:
@@ -266,6 +268,7 @@ class PoundingDashboard(pn.viewable.Viewer):
         m = self.model
         with self._batch():
             self.figures.fill(m.snapshot, m.units, m.monte_carlo_points(), m.current_design_gap())
+            self.pinned_overlay.fill(m.pinned, m.units)
         self.tabs.refresh()
 
     def _refuse_upload(self, reason: str) -> None:

@@ -27,11 +27,13 @@ state), :mod:`.card` (the result card), :mod:`.figures` (the plots),
 :mod:`.case_keys` (where the inputs came from, what changed from a preset),
 :mod:`.summary`, :mod:`.inputs_section`, :mod:`.figure_section`,
 :mod:`.distribution_section`, :mod:`.hazard_section`, :mod:`.method_section`,
-:mod:`.print_css` (A4).
+:mod:`.print_css` (A4); :mod:`.comparison`, two states of a case side by side on one page
+(:func:`write_comparison`).
 """
 
 from pounding.display_units import DISPLAY_UNITS, Display, display
 from pounding.report.card import RESULT_CSS, result_html
+from pounding.report.comparison import Difference, comparison_html, differences, write_comparison
 from pounding.report.figures import PLOTTED_STEPS, Figures
 from pounding.report.method_section import method_notes
 from pounding.report.provenance import CaseChange, ReportProvenance, case_changes, case_provenance
@@ -51,6 +53,10 @@ from pounding.report.summary import MonteCarloCheck, monte_carlo_check, verdict_
 
 __all__ = [
     "CaseChange",
+    "Difference",
+    "comparison_html",
+    "differences",
+    "write_comparison",
     "DEFAULT_RECORD",
     "DISPLAY_UNITS",
     "GAP_POINTS",

@@ -1,0 +1,170 @@
+"""Pin and compare: the page keeps one state of the case ("pinned": its closed-form estimate and everything its
+plots showed, :class:`~pounding.report.Snapshot`, as computed, never recomputed) while the inputs change; the
+headline then shows both states' key numbers and the change (current minus pinned) in the units shown and in %,
+the force-against-gap curve and the distribution of F_max draw the pinned state dashed beside the current one,
+and the pair exports as one page (:func:`pounding.report.write_comparison`). The numbers and the change are the
+library's (:func:`pounding.report.differences`); this only holds the pinned state and draws it."""
+
+from __future__ import annotations
+
+import html
+from dataclasses import dataclass
+
+import param
+
+from dashboard.uploads import new_folder, remove
+from pounding.display_units import display
+from pounding.report import Snapshot, differences, write_comparison
+from pounding.report.comparison import COMPARISON_NAMES, distribution_points
+
+__all__ = ["PINNED_CSS", "PINNED_LABEL", "PinnedOverlay", "PinnedState", "Pinning", "pin_controls", "pinned_html"]
+
+PINNED_LABEL = "pinned E[F_max]"
+"""The pinned curve's entry in the force-against-gap plot's legend."""
+_STYLE = {"color": "#ff7f0e", "line_dash": "dashed", "line_width": 2}
+_ROW_CSS = ("pin-force", "pin-f84", "pin-probability", "pin-gap")
+"""The CSS class of each row of :func:`pinned_html`, in the order of :func:`pounding.report.differences`."""
+
+PINNED_CSS = """
+.headline table.pinned { border-collapse: collapse; margin: 2px 0 6px; font-size: 13px; width: 100%; }
+.headline table.pinned th, .headline table.pinned td { padding: 1px 6px; text-align: left; border-bottom: 1px solid #e4e4e4; }
+.headline table.pinned td.pinned-value { color: #a35200; }
+.headline table.pinned td.pinned-value, .headline table.pinned td.current-value { white-space: nowrap; }
+.headline table.pinned td.change { font-weight: 700; }
+.headline p.pinned-note { font-size: 12px; color: #555; margin: 0 0 6px; }
+"""
+
+
+@dataclass(frozen=True)
+class PinnedState:
+    """A state of the page kept for comparison.
+
+    Attributes
+    ----------
+    snapshot : Snapshot
+        What the page showed for it: its ``estimate`` (the headline's numbers) and ``gap_curve``.
+    name : str
+        The case's name on the page when pinned ("section5-T2-0.4 (modified)").
+    """
+
+    snapshot: Snapshot
+    name: str
+
+    @property
+    def estimate(self):
+        """The pinned :class:`~pounding.closed_form.estimator.Estimate`."""
+        return self.snapshot.estimate
+
+
+class Pinning(param.Parameterized):
+    """The pinned state; mixed into the dashboard's model, which provides ``result``, ``snapshot`` and
+    ``case_name()``."""
+
+    pinned = param.ClassSelector(class_=PinnedState, default=None, allow_None=True, precedence=-1,
+                                 doc="The state kept for comparison (PinnedState), or None.")
+
+    def can_pin(self) -> bool:
+        """Whether the page shows a valid state whose plots are computed (the snapshot of the estimate shown)."""
+        return self.result is not None and self.snapshot is not None and self.snapshot.estimate is self.result
+
+    def pin(self) -> bool:
+        """Keep the state shown (its estimate and snapshot, as computed); False when there is none to keep."""
+        if not self.can_pin():
+            return False
+        self.pinned = PinnedState(self.snapshot, self.case_name())
+        return True
+
+    def unpin(self) -> None:
+        """Forget the pinned state: the page shows the current state alone."""
+        self.pinned = None
+
+    def comparison(self):
+        """The key numbers of the pinned and the current state (:func:`pounding.report.differences`), or None."""
+        if self.pinned is None or self.result is None:
+            return None
+        return differences(self.pinned.estimate, self.result)
+
+
+def pinned_html(pinned: PinnedState | None, result, units: str = "SI") -> str:
+    """The headline's comparison: each key number pinned and current, and the change; '' when nothing is pinned."""
+    if pinned is None or result is None:
+        return ""
+    shown = display(units)
+    rows = "".join(
+        f'<tr class="{css}"><th>{html.escape(d.quantity)}</th><td class="pinned-value">{html.escape(d.value_text(d.pinned, shown))}</td>'
+        f'<td class="current-value">{html.escape(d.value_text(d.current, shown))}</td>'
+        f'<td class="change">{html.escape(d.change_text(shown))}</td></tr>'
+        for css, d in zip(_ROW_CSS, differences(pinned.estimate, result)))
+    return (f'<table class="pinned"><thead><tr><th></th><th>{COMPARISON_NAMES[0]}</th><th>{COMPARISON_NAMES[1]}</th>'
+            f"<th>change</th></tr></thead><tbody>{rows}</tbody></table>"
+            f'<p class="pinned-note">Pinned: {html.escape(pinned.name)}. Change: current minus pinned (closed form).</p>')
+
+
+class PinnedOverlay:
+    """The pinned state's expected extreme force against the gap, dashed, on the page's force-against-gap figure
+    (:class:`pounding.report.Figures`): its own gap marked; hidden, legend entry too, while nothing is pinned."""
+
+    def __init__(self, figure):
+        from bokeh.models import ColumnDataSource
+
+        self.curve = ColumnDataSource(data={"gap": [], "force": []})
+        self.point = ColumnDataSource(data={"gap": [], "force": []})
+        line = figure.line("gap", "force", source=self.curve, legend_label=PINNED_LABEL, **_STYLE)
+        dot = figure.scatter("gap", "force", source=self.point, color=_STYLE["color"], size=9, legend_label=PINNED_LABEL)
+        figure.y_range.renderers = [*figure.y_range.renderers, line, dot]  # the axis fits the pinned curve too
+        self.item = next(item for item in figure.legend[0].items if item.label.value == PINNED_LABEL)
+        self.item.visible = False
+
+    def fill(self, pinned: PinnedState | None, units: str = "SI") -> None:
+        """Show ``pinned`` in ``units`` (None: nothing)."""
+        if pinned is None:
+            self.curve.data, self.point.data = {"gap": [], "force": []}, {"gap": [], "force": []}
+        else:
+            shown, snapshot = display(units), pinned.snapshot
+            curve = snapshot.gap_curve
+            self.curve.data = {"gap": curve.gaps / shown.length_scale, "force": curve.force_expected / shown.force_scale}
+            self.point.data = {"gap": [snapshot.case.contact.gap / shown.length_scale],
+                               "force": [snapshot.estimate.force_expected / shown.force_scale]}
+        self.item.visible = pinned is not None
+
+
+def overlay_distribution(figure, pinned: PinnedState | None, units: str = "SI") -> None:
+    """Draw the pinned state's distribution of F_max, dashed, on the distribution ``figure`` (and widen its force
+    axis to hold it)."""
+    if pinned is None:
+        return
+    shown = display(units)
+    forces, cdf = distribution_points(pinned.estimate)
+    figure.line(forces / shown.force_scale, cdf, legend_label="pinned (closed form)", **_STYLE)
+    top = pinned.estimate.force_max_distribution.quantile(0.999) / shown.force_scale
+    end = figure.x_range.end
+    if top > 0 and (end is None or 1.05 * top > end):
+        figure.x_range.end = 1.05 * top
+
+
+def pin_controls(dashboard):
+    """The Pin and Unpin buttons and the comparison's export (a Panel column), bound to ``dashboard.model``."""
+    import panel as pn
+
+    m = dashboard.model
+    pin = pn.widgets.Button(name="Pin this state", button_type="primary", width=130,
+                            disabled=pn.bind(lambda *_: not m.can_pin(), m.param.result, m.param.snapshot))
+    unpin = pn.widgets.Button(name="Unpin", button_type="light", width=80, disabled=pn.bind(lambda p: p is None, m.param.pinned))
+    pin.on_click(lambda _event: m.pin())
+    unpin.on_click(lambda _event: m.unpin())
+
+    def export():
+        if m.pinned is None or m.snapshot is None:
+            return None
+        for old in dashboard._exports:  # one export at a time on the disk, as the report's
+            remove(old)
+        folder = new_folder("pounding-comparison-")
+        dashboard._exports[:] = [folder]
+        name = f"pounding-comparison-{m.case_slug()}.html"
+        download.filename = name
+        return str(write_comparison(folder / name, m.pinned.snapshot, m.snapshot, m.units, names=(m.pinned.name, m.case_name())))
+
+    download = pn.widgets.FileDownload(callback=export, filename="pounding-comparison.html", label="Export comparison (HTML)",
+                                       button_type="success", auto=True, embed=False, width=220,
+                                       visible=pn.bind(lambda p: p is not None, m.param.pinned))
+    return pn.Column(pn.Row(pin, unpin), download, margin=0)
