@@ -177,7 +177,8 @@ def headline_html(result, units: str = "SI", capacity: float | None = None, mont
     # beside a verdict the measured range is stated in full, however wide (pounding.closed_form.regimes.SIGNABLE_ERROR)
     accuracy = result.measured_accuracy if check is None else result.accuracy.statement(with_verdict=True)
     lines.append(f'<p class="accuracy">{html.escape(accuracy)}</p>')
-    return (f'<div class="headline">{held}{code_clauses_line(result, shown)}{f"<b>{html.escape(name)}</b>" if name else ""}'
+    title = f'<b class="case-name">{html.escape(name)}</b>' if name else ""
+    return (f'<div class="headline">{held}{code_clauses_line(result, shown)}{title}'
             f'{pinned}<div class="numbers">{"".join(numbers)}</div>' + "".join(lines) + _details(result, shown) + "</div>")
 
 

@@ -134,7 +134,7 @@ def test_an_uploaded_case_file_is_named_by_its_file_in_the_headline_and_the_repo
     dashboard.locator("input[type=file][accept='.toml']").set_input_files(str(path))
     shown = display(data["units"])  # the page takes the file's units
     _wait_text(dashboard, ".fe-recommended", shown.force(estimate(case_from_dict(data)).force_expected))
-    assert _text(dashboard.locator(".headline b").first) == "my-house"
+    assert _text(dashboard.locator(".headline .case-name")) == "my-house"
     dashboard.get_by_text("Loaded my-house.toml.").wait_for(timeout=UPDATE_TIMEOUT)
     with dashboard.expect_download(timeout=60_000) as download:
         dashboard.get_by_role("button", name="Export report (HTML)").click()
@@ -147,7 +147,7 @@ def test_an_uploaded_case_file_is_named_by_its_file_in_the_headline_and_the_repo
         "section6-T2-0.4")
     _wait_text(dashboard, ".fe-recommended", shown.force(estimate(load_case("section6-T2-0.4")).force_expected))
     assert dashboard.get_by_text("Loaded my-house.toml.").count() == 0
-    assert _text(dashboard.locator(".headline b").first) == "section6-T2-0.4"
+    assert _text(dashboard.locator(".headline .case-name")) == "section6-T2-0.4"
     assert dashboard.errors == []
 
 

@@ -327,7 +327,7 @@ def test_without_javascript_the_summary_and_inputs_are_read(report, browser):
                    f"{100 * e.pounding_probability:.3g} %", shown.length(e.required_gap)):
         assert number in text
     inputs = text[text.index("2. Inputs"):text.index("3. Results")]
-    for row in ("storey 1: mass\t39,240\tkg", "gap\t10\tmm", "G0 (intensity)\t0.006503\tm^2/s^3", "fundamental period T1\t0.4\ts"):
+    for row in ("storey 1: mass\t39,240\tkg", "gap\t10\tmm", "G0 (intensity)\t0.006503\tm^2/s^3", "fundamental period T2\t0.4\ts"):
         assert row in inputs, row
     assert "Figure 1." in text and "drawn by JavaScript" in text
 
@@ -386,3 +386,13 @@ def test_the_report_prints_on_a4_with_no_figure_clipped_or_split(report, browser
     pages = _pdf_destination_pages(pdf)
     for number in range(1, len(figures) + 1):  # a figure's top and its caption on one page: not split
         assert pages[f"figure-{number}"] == pages[f"figure-{number}-caption"], (number, pages)
+
+
+def test_no_plot_of_the_report_prints_its_toolbar(tmp_path):
+    """Issue 34: the plots' toolbars printed over the figures in the PDF. Every toolbar of the report shows on
+    hover only (Bokeh's autohide), so a printed page carries none while the page on screen keeps its tools."""
+    from pounding.report import compute_snapshot, write_report
+
+    text = write_report(tmp_path / "r.html", compute_snapshot(load_case("section5-T2-0.4"))).read_text()
+    toolbars = text.count('"name":"Toolbar"')
+    assert toolbars >= 3 and text.count('"autohide":true') == toolbars and '"autohide":false' not in text

@@ -28,5 +28,9 @@ def embedded(models: list) -> tuple[str, tuple[str, ...], str]:
     from bokeh.embed.bundle import bundle_for_objs_and_resources
     from bokeh.resources import INLINE
 
+    for model in models:  # the tools show on hover only: a printed page carries no toolbar over its plots
+        toolbar = getattr(model, "toolbar", None)
+        if toolbar is not None and hasattr(toolbar, "autohide"):
+            toolbar.autohide = True
     script, divs = components(models)
     return script, tuple(divs), without_external(bundle_for_objs_and_resources(models, INLINE).scripts())
