@@ -21,8 +21,8 @@ EXEC_MIME = "application/vnd.holoviews_exec.v0+json"
 """What Panel (and HoloViews through it) puts beside the HTML of a live output in a notebook."""
 INTERACTIVE = "interactive"
 """The tag of a cell whose output is live widgets."""
-WIDGET_MODEL = re.compile(r'\\?"name\\?":\\?"(Slider|Spinner|Select)\\?"')
-"""A Bokeh input widget in a Panel output's document (sliders; numeric entries and selects in the dashboard)."""
+WIDGET_MODEL = re.compile(r'\\?"name\\?":\\?"(Slider|Spinner|Select|CustomSelect)\\?"')
+"""A Bokeh input widget in a Panel output's document (sliders; numeric entries and selects: Panel's is CustomSelect)."""
 
 # The check cell of each lesson with widgets: it prints the bound output before and after a change of the
 # lesson's input, and the library's own numbers for the new input, computed here without the lesson's code.
@@ -43,21 +43,68 @@ from pounding import BoucWen, Storey
 from pounding.display_units import display
 from pounding.mechanics.structures import hysteresis
 before = readout.object
-lesson.param.update(yield_drift=2.0, beta_share=1.0)
+lesson.param.update(yield_drift=20.0, beta_share=1.0)  # [mm]
 library_storey = Storey(4e4, 1.1e6, BoucWen.from_yield_drift(0.02, 0.05, n=1.0, beta_share=1.0))
 print(json.dumps({"before": before, "after": readout.object, "expected": [display("SI").force(library_storey.yield_force)],
-                  "plotted": float(loop().get(0).dimension_values(1).max()), "library": float(hysteresis(library_storey, drift)[1].max() / 1e3)}))
+                  "plotted": float(loop().get(0).dimension_values(1).max()), "library": float(hysteresis(library_storey, drift)[1].max() / 1e3),
+                  "drift plotted": float(loop().get(0).dimension_values(0).max()), "drift": float(1e3 * drift.max())}))
+""",
+    "3_random_vibration": """
+import dataclasses, json
+import numpy as np
+import pounding
+from pounding.closed_form.pair import LinearizedPair
+from pounding.display_units import display
+before = readout.object
+omega_slider.value = 10.0  # as a student moves the slider [rad/s]
+paper = pounding.load_case("section5-T2-0.4")
+spectrum = dataclasses.replace(paper.excitation.spectrum, omega_g=10.0)
+pair = LinearizedPair.of(dataclasses.replace(paper, excitation=dataclasses.replace(paper.excitation, spectrum=spectrum)))
+r = pair.stationary_response
+grid = np.geomspace(0.1, 200, 2000)
+print(json.dumps({"before": before, "after": readout.object, "input": lesson.omega_g, "set": 10.0,
+                  "expected": [display("SI").length(r.sigma_relative_displacement), display("SI").velocity(r.sigma_relative_velocity)],
+                  "plotted": float(velocity_psd(lesson.omega_g).get(0).dimension_values(1).max()),
+                  "library": float(pair.psd_relative_velocity(grid).max())}))
+""",
+    "4_the_paper_step_by_step": """
+import dataclasses, json
+import pounding
+from pounding.display_units import display
+before = readout.object
+restitution_slider.value = 0.5  # as a student moves the slider [-]
+paper = pounding.load_case("section5-T2-0.4")
+r = pounding.estimate(dataclasses.replace(paper, contact=dataclasses.replace(paper.contact, restitution=0.5)))
+print(json.dumps({"before": before, "after": readout.object, "input": lesson.restitution, "set": 0.5,
+                  "expected": [display("SI").force(r.paper.force_expected), display("SI").force(r.force_expected)],
+                  "plotted": float(restitution_dots(lesson.restitution).dimension_values(1)[1]), "library": r.force_expected / 1e3}))
 """,
     "5_design_gap": """
 import dataclasses, json
 import pounding
 from pounding.display_units import display
 before = readout.object
-gap_slider.value = 12.0  # as a student moves the slider [cm]
+gap_slider.value = 120.0  # as a student moves the slider [mm]
 paper = pounding.load_case("section5-T2-0.4")
 r = pounding.estimate(dataclasses.replace(paper, contact=dataclasses.replace(paper.contact, gap=0.12)))
-print(json.dumps({"before": before, "after": readout.object, "input": lesson.gap,
-                  "expected": [display("SI").force(r.force_expected), f"{100 * r.pounding_probability:.3g} %"]}))
+print(json.dumps({"before": before, "after": readout.object, "input": lesson.gap, "set": 120.0,
+                  "expected": ["120 mm", display("SI").force(r.force_expected), f"{100 * r.pounding_probability:.3g} %"],
+                  "plotted": float(force_dot(lesson.gap).dimension_values(1)[0]), "library": r.force_expected / 1e3}))
+""",
+    "6_hazard_in_engineering_terms": """
+import json
+from pounding import estimate
+from pounding.case.case import case_from_dict
+from pounding.display_units import display
+from pounding.hazard.design_spectra import Eurocode8Spectrum
+before = readout.object
+ground_select.value = "D"  # as a student picks another ground type
+soft = case_from_dict({"units": "SI", "excitation": {"spectrum": "design", "code": "ec8", "spectrum_type": 1, "ground_type": "D",
+                                                      "ag": 0.3, "duration": 20.0}, "buildings": buildings, "contact": contact})
+sa = Eurocode8Spectrum(0.3 * 9.80665, "D", 1).pseudo_acceleration([1.0, 0.5]) / 9.80665
+print(json.dumps({"before": before, "after": readout.object, "input": lesson.ground_type, "set": "D",
+                  "expected": [display("SI").force(estimate(soft).force_expected), f"{sa[0]:.3g} g", f"{sa[1]:.3g} g"],
+                  "plotted": float(spectrum_plot(lesson.ground_type).get(2).dimension_values(1)[0]), "library": float(sa[0])}))
 """,
 }
 
@@ -132,9 +179,11 @@ def test_notebook_runs(path):
     for number in checked["expected"]:
         assert number in checked["after"], f"{number!r} not in the bound output {checked['after']!r}"
     if "input" in checked:
-        assert checked["input"] == pytest.approx(12.0), "the slider did not set the lesson's parameter"
+        assert checked["input"] == pytest.approx(checked["set"]), "the widget did not set the lesson's parameter"
     if "plotted" in checked:
         assert checked["plotted"] == pytest.approx(checked["library"], rel=1e-12)
+    if "drift plotted" in checked:  # lengths in the dashboard's mm
+        assert checked["drift plotted"] == pytest.approx(checked["drift"], rel=1e-12)
     if path.stem == "1_impact_physics":
         _opens_the_dashboard(interactive)
 
