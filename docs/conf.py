@@ -6,7 +6,7 @@ Build (warnings are errors, as in CI):
     python3 -m sphinx -W --keep-going -b html docs build/docs
 
 The HTML build also executes the teaching notebooks and writes them, with their figures, as
-``build/docs/notebooks/*.html`` (docs/notebook_pages.py; about a minute and a half on 2 cores, see
+``build/docs/notebooks/*.html`` (docs/notebook_pages.py; 70 to 90 s of the build on 2 shared cores, see
 :data:`NOTEBOOK_PAGES`).
 """
 

@@ -7,7 +7,7 @@ outputs. By hand::
     python3 docs/notebook_pages.py build/notebooks                # all six
     python3 docs/notebook_pages.py build/notebooks 3_random_vibration   # one
 
-Each notebook runs in a fresh ``python3`` kernel in ``notebooks/`` with ``PANEL_INLINE=1``, so that
+Each notebook runs in a fresh ``python3`` kernel in ``notebooks/`` (two at a time) with ``PANEL_INLINE=1``, so that
 ``pn.extension()`` writes BokehJS and Panel's JS into the notebook and the page draws its plots offline (the
 same as ``PANEL_INLINE=1 jupyter nbconvert --execute --to html``). The pages run no Python: a lesson's widgets
 show, but moving one recomputes nothing. Only nbconvert's template asks the network for something: MathJax
@@ -48,19 +48,24 @@ def html_page(notebook) -> str:
     return html
 
 
-def write_pages(folder: Path, names: list[str] | None = None) -> dict[str, float]:
-    """Each notebook (all, or those whose file name starts with one of ``names``) as ``folder/<name>.html``;
-    the seconds each took, by name."""
+def write_page(path: Path, folder: Path) -> float:
+    """The notebook at ``path`` executed and written as ``folder/<name>.html``; the seconds it took."""
+    start = time.perf_counter()
+    (folder / f"{path.stem}.html").write_text(html_page(execute(path)), encoding="utf-8")
+    return time.perf_counter() - start
+
+
+def write_pages(folder: Path, names: list[str] | None = None, workers: int = 2) -> dict[str, float]:
+    """Each notebook (all, or those whose file name starts with one of ``names``) as ``folder/<name>.html``,
+    ``workers`` at a time (one kernel each); the seconds each took, by name."""
+    from concurrent.futures import ProcessPoolExecutor
+
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
-    took = {}
-    for path in sorted(NOTEBOOKS.glob("*.ipynb")):
-        if names and not any(path.stem.startswith(name) for name in names):
-            continue
-        start = time.perf_counter()
-        (folder / f"{path.stem}.html").write_text(html_page(execute(path)), encoding="utf-8")
-        took[path.stem] = time.perf_counter() - start
-    return took
+    paths = [path for path in sorted(NOTEBOOKS.glob("*.ipynb")) if not names or any(path.stem.startswith(n) for n in names)]
+    with ProcessPoolExecutor(max_workers=max(1, min(workers, len(paths)))) as pool:
+        took = pool.map(write_page, paths, [folder] * len(paths))
+        return {path.stem: seconds for path, seconds in zip(paths, took)}
 
 
 if __name__ == "__main__":
