@@ -40,6 +40,11 @@ REDRAW_DELAY_MS = 150
 """The plots are redrawn this long after a new result, so that the headline (the number the user waits for)
 reaches the browser and is painted before the larger plot data; changes in between give one redraw."""
 
+INLINE_PLOT_MIN_WIDTH = 560
+"""[px] The gap plot's narrowest inline: its two-column legend (about 455 px beside the axis) and its title (about 310 px) fit."""
+INLINE_RESULTS_MIN_WIDTH = 500
+"""[px] Inline, the results go under the inputs when the cell leaves them less than this beside."""
+
 PAGE_CSS = """
 .change-note { font-size: 12px; color: #335; }
 """
@@ -188,9 +193,10 @@ class PoundingDashboard(pn.viewable.Viewer):
             ("Force history", pn.Column(bokeh(self.figures.contact), bokeh(self.figures.relative), bokeh(self.figures.ground),
                                         sizing_mode="stretch_width")),
         ])
+        self.headline_column = pn.Column(self.headline, self.export, pin_controls(self), width=430)
         self.main = pn.Column(
             self.error, self.note,
-            pn.Row(pn.Column(self.headline, self.export, pin_controls(self), width=430), self.gap_plot, sizing_mode="stretch_width"),
+            pn.Row(self.headline_column, self.gap_plot, sizing_mode="stretch_width"),
             self.tabs.panel,
             sizing_mode="stretch_width",
         )
@@ -318,5 +324,12 @@ class PoundingDashboard(pn.viewable.Viewer):
         return page
 
     def __panel__(self):
-        return pn.Row(pn.Column(self.sidebar, width=340), self.main, sizing_mode="stretch_width",
-                      stylesheets=[PAGE_CSS])
+        """Inline, in a notebook cell of any width: the inputs, the headline and the gap plot side by side where
+        they fit, else wrapped one under the other; the gap plot never narrower than its legend and title
+        (:data:`INLINE_PLOT_MIN_WIDTH`)."""
+        plot = pn.Column(self.gap_plot, sizing_mode="stretch_width", styles={"flex": f"1 1 {INLINE_PLOT_MIN_WIDTH}px"})
+        results = pn.Column(self.error, self.note,
+                            pn.FlexBox(self.headline_column, plot, flex_wrap="wrap", sizing_mode="stretch_width"),
+                            self.tabs.panel, sizing_mode="stretch_width", styles={"flex": f"1 1 {INLINE_RESULTS_MIN_WIDTH}px"})
+        return pn.FlexBox(pn.Column(self.sidebar, width=340), results, flex_wrap="wrap", sizing_mode="stretch_width",
+                          stylesheets=[PAGE_CSS])
