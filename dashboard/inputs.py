@@ -132,7 +132,8 @@ class CaseInputs(param.Parameterized):
     scale = param.Number(1.0, bounds=(0.0, 100.0), inclusive_bounds=(False, True), label="scale factor [-]", doc="Every record times this.")
     records_pga = param.Number(0.3, bounds=(0.0, 5.0), inclusive_bounds=(False, True), label="each record's PGA [g]",
                                doc="Every record scaled to this peak ground acceleration, in g.")
-    duration = param.Number(20.0, bounds=(1.0, 200.0), label="duration [s]", doc="Length of the synthetic records.")
+    duration = param.Number(20.0, bounds=(1.0, 200.0), label="duration [s]", doc="Length of the synthetic records. For recorded motions, the records' own: to the end of the longest "
+                                "once their strong motions are aligned to start together.")
     envelope = param.Selector(default="none", objects=["none", "shinozuka-sato"], label="envelope",
                               doc="Stationary records, or modulated by the Shinozuka-Sato envelope.")
     B1 = param.Number(0.085, bounds=(0.001, 5.0), label="envelope B1 [1/s]", doc="Shinozuka-Sato decay constant B1, below B2.")
@@ -142,7 +143,8 @@ class CaseInputs(param.Parameterized):
     target_probability = param.Number(defaults.TARGET_PROBABILITY, bounds=(0.5, 0.9999), label="target P(no pounding) [-]",
                                       doc="Probability of no pounding during the record that the gap needed must give.")
     capacity = param.Number(3e5, bounds=(0.0, None), inclusive_bounds=(False, True), label="capacity",
-                            doc="A force the connection or slab edge takes: P(F_max > capacity) and the fragility curve.")
+                            doc="A force the connection or slab edge takes: P(F_max > capacity), the gap sized to it and the "
+                                "fragility curve. It starts at the case's 84th percentile of F_max, rounded up: type your element's.")
     restitution = param.Number(0.65, bounds=(MIN_RESTITUTION, 1.0), label="restitution e [-]", doc="Coefficient of restitution of an impact, from 0.001 to 1.")
     contact_model = param.Selector(default="jankowski", objects=list(CONTACT_MODELS), label="contact law",
                                    doc="Jankowski's nonlinear viscoelastic law (the paper's), Hertz, Hertzdamp, or linear viscoelastic.")
