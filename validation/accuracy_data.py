@@ -8,7 +8,7 @@ and the warnings it states.
   ``pounding.studies.paper_tables.accuracy_cases``, and the storeys given the
   engineer's way, ``pounding.studies.storey_grid``) against Monte Carlo (300
   records, seed 11), each case counted in the table the estimate reads for it
-  (:func:`force_table`) and listed in docs/accuracy-cases.md;
+  (``regimes.force_table``) and listed in docs/accuracy-cases.md;
 - Kanai-Tajimi force: the grid's and the draws ``random_cases(seed)`` for
   :data:`SEEDS` (300 records, seed 11), by the regime each estimate states, rare
   pounding split by whether a storey yields (:func:`validation.out_of_sample.measured`);
@@ -40,8 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from pounding.closed_form.pair import LinearizedPair
-from pounding.closed_form.regimes import other_loop
-from pounding.hazard.excitation import CloughPenzien
+from pounding.closed_form.regimes import force_entry_key, force_table
 from pounding.studies.paper_tables import AccuracyRow, accuracy, accuracy_cases, random_cases
 from pounding.studies.storey_grid import engineer_storey_cases
 
@@ -104,28 +103,14 @@ class GridCase:
 
     source: str
     table: str
-    """The row of accuracy.json's ``force`` it counts in (:func:`force_table`)."""
+    """The row of accuracy.json's ``force`` it counts in (``regimes.force_table``)."""
     label: str
     """Its regime's label in that table; "refused" where the closed form has no answer."""
     row: AccuracyRow
 
 
-def force_table(case) -> str:
-    """accuracy.json's ``force`` table a case counts in, as the estimate reads it (``regimes.measured_range``):
-    "other loops" for a yielding storey outside the grid's loops, else its spectrum's."""
-    yielding = any(storey.bouc_wen.alpha < 1.0 for building in case.buildings for storey in building.storeys)
-    if yielding and other_loop(case):
-        return "other loops"
-    return "clough-penzien" if isinstance(case.excitation.spectrum, CloughPenzien) else "kanai-tajimi"
-
-
-def _table_label(table: str, case, row: AccuracyRow) -> str:
-    if row.refused:
-        return "refused"
-    yielding = any(storey.bouc_wen.alpha < 1.0 for building in case.buildings for storey in building.storeys)
-    if row.accuracy_regime == "rare":
-        return "rare, yielding" if yielding else "rare, elastic"
-    return "gap below sigma_X" if table == "clough-penzien" else row.accuracy_regime
+def _yielding(case) -> bool:
+    return any(storey.bouc_wen.alpha < 1.0 for building in case.buildings for storey in building.storeys)
 
 
 def grid(cases: int | None, records: int) -> list[GridCase]:
@@ -135,8 +120,9 @@ def grid(cases: int | None, records: int) -> list[GridCase]:
     for source, chosen in (("paper's storeys", first(accuracy_cases(), cases)),
                            ("engineer's storeys", first(engineer_storey_cases(), cases))):
         for case, row in zip(chosen, accuracy(chosen, records=records, seed=SEED)):
-            table = force_table(case)
-            out.append(GridCase(source, table, _table_label(table, case, row), row))
+            table = force_table(case, _yielding(case))  # as the estimate reads it (regimes.measured_range)
+            label = "refused" if row.refused else force_entry_key(table, row.accuracy_regime, _yielding(case))
+            out.append(GridCase(source, table, label, row))
     return out
 
 
@@ -189,8 +175,7 @@ def recorded_suites_force(cases: int | None, records: int = SUITE_RECORDS) -> di
         pass
     else:
         rows += fema_accuracy.rows(pair_names=None if cases is None else fema_accuracy.PAIRS[:cases], fitted_process=False)[2]
-    labelled = [("rare, yielding" if row["yielding"] else "rare, elastic") if row["regime"] == "rare" else row["regime"]
-                for row in rows]
+    labelled = [force_entry_key("recorded suites", row["regime"], row["yielding"]) for row in rows]
     return {label: force_entry([row["force_error"] for row, other in zip(rows, labelled)
                                 if other == label and row["force_error"] is not None]) for label in LABELS}
 

@@ -31,7 +31,7 @@ import numpy as np
 from pounding import estimate, load_case, simulate
 from pounding.case.case import case_from_dict
 from pounding.closed_form.pair import LinearizedPair
-from pounding.closed_form.regimes import GRID_LOOP_SHARE
+from pounding.closed_form.regimes import GRID_LOOP_SHARE, force_entry_key
 from pounding.errors import ConvergenceError, InputError
 from pounding.hazard.excitation import CloughPenzien
 from pounding.mechanics.structures import BoucWen
@@ -120,7 +120,7 @@ def other_loop_errors(table: list[dict]) -> list[tuple[str, float]]:
     """(label, error) of the yielding draws whose loop lies outside the grid's (beta_share below
     ``regimes.GRID_LOOP_SHARE``), labelled by the estimate's regime, rare pounding as "rare, yielding"
     (accuracy.json's "other loops")."""
-    return [("rare, yielding" if row["regime"] == "rare" else row["regime"], row["error"]) for row in table
+    return [(force_entry_key("other loops", row["regime"], True), row["error"]) for row in table
             if row["error"] is not None and row["share"] is not None and row["share"] < GRID_LOOP_SHARE]
 
 

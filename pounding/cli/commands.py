@@ -168,8 +168,14 @@ def _estimate(args) -> int:
     result = estimate(case, target_probability=args.target_probability, paper_variance=args.paper_variance,
                       michaelov_n1=args.michaelov_n1)
     check = None if args.check is None else _check(case, result, args)
-    gap_for_capacity = None if capacity is None else result.gap_for_capacity(capacity)
-    at_capacity_gap = None if check is None or capacity is None else _capacity_gap_check(case, gap_for_capacity, capacity, check)
+    at_capacity_gap, gap_for_capacity = None, None
+    if check is not None and capacity is not None:
+        from pounding.studies.check import check_gap_for_capacity
+
+        at_capacity_gap = check_gap_for_capacity(result, capacity, check)  # the gap with its Monte Carlo
+        gap_for_capacity = at_capacity_gap["gap"]
+    elif capacity is not None:
+        gap_for_capacity = result.gap_for_capacity(capacity)
     if args.json:
         out = result.to_dict()
         if capacity is not None:
@@ -242,23 +248,11 @@ def _estimate(args) -> int:
     if at_capacity_gap is not None:
         low, high = at_capacity_gap["probability_exceeding_interval"]
         target = 1 - result.target_probability
-        verdict = "holds" if low <= target else "does not hold: widen the gap"
+        verdict = "holds" if at_capacity_gap["holds"] else "does not hold: widen the gap"
         print(f"At the gap for {force_text(capacity)}, {length(gap_for_capacity)}: {100 * at_capacity_gap['probability_exceeding']:.1f} % "
               f"of {at_capacity_gap['records']} records exceed it (95 % interval {100 * low:.1f} % to {100 * high:.1f} %); "
               f"the target of {100 * target:g} % {verdict}.")
     return 0
-
-
-def _capacity_gap_check(case, gap: float, capacity: float, check) -> dict:
-    """The Monte Carlo at the gap for a capacity (the check's records and seed; a recorded suite's own records): the
-    fraction of records whose F_max exceeds ``capacity`` [N], its 95 % Wilson interval and the records."""
-    from dataclasses import replace
-
-    from pounding.simulation.monte_carlo import simulate
-
-    at_gap = replace(case, contact=replace(case.contact, gap=gap))
-    study = simulate(at_gap) if case.recorded else simulate(at_gap, records=check.records, seed=check.seed)
-    return {"gap": gap, "records": study.n_records, **study.exceedance(capacity)}
 
 
 def _check(case, result, args):

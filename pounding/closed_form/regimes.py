@@ -41,6 +41,8 @@ __all__ = [
     "accuracy_data",
     "accuracy_regime",
     "assess",
+    "force_entry_key",
+    "force_table",
     "extreme_warnings",
     "hazard_warnings",
     "measured_range",
@@ -155,14 +157,18 @@ class Assessment:
     accuracy: MeasuredRange
 
 
+def force_entry_key(table: str, regime: str, yielding: bool) -> str:
+    """The key of accuracy.json's ``force[table]`` a case of ``regime`` counts in: rare pounding split by whether a
+    storey yields, the Clough-Penzien gap below sigma_X as one, else the regime."""
+    if regime == "rare":
+        return "rare, yielding" if yielding else "rare, elastic"
+    return "gap below sigma_X" if table == "clough-penzien" else regime
+
+
 def _force_entry(spectrum: str, regime: str, yielding: bool) -> dict:
     """accuracy.json's ``force`` entry of a table (``spectrum``) and regime; where the "other loops" or the "recorded
     suites" table has no case of that regime, the Kanai-Tajimi one."""
-    table = accuracy_data()["force"][spectrum]
-    if regime == "rare":
-        entry = table["rare, yielding" if yielding else "rare, elastic"]
-    else:
-        entry = table["gap below sigma_X"] if spectrum == "clough-penzien" else table[regime]
+    entry = accuracy_data()["force"][spectrum][force_entry_key(spectrum, regime, yielding)]
     if spectrum in ("other loops", "recorded suites") and not entry["cases"]:
         return _force_entry("kanai-tajimi", regime, yielding)
     return entry
@@ -231,12 +237,15 @@ def _spectrum(pair) -> str:
     return "clough-penzien" if isinstance(pair.case.excitation.spectrum, CloughPenzien) else "kanai-tajimi"
 
 
-def _force_table(pair) -> str:
-    """The row of accuracy.json's ``force`` table a pair reads: "recorded suites" for a case of recorded motions, "other
-    loops" for a yielding storey outside the grid's loops (:func:`other_loop`), else its spectrum's."""
-    if pair.case.recorded:
+def force_table(case, yielding: bool) -> str:
+    """The table of accuracy.json's ``force`` a case reads (``yielding``: whether a storey yields): "recorded suites"
+    for recorded motions, "other loops" for a yielding storey outside the grid's loops (:func:`other_loop`), else its
+    spectrum's ("clough-penzien" or "kanai-tajimi")."""
+    if case.recorded:
         return "recorded suites"
-    return "other loops" if pair.yielding and other_loop(pair.case) else _spectrum(pair)
+    if yielding and other_loop(case):
+        return "other loops"
+    return "clough-penzien" if isinstance(case.excitation.spectrum, CloughPenzien) else "kanai-tajimi"
 
 
 def measured_range(pair, gap: float | None = None, sigma_x: float | None = None) -> MeasuredRange:
@@ -248,7 +257,7 @@ def measured_range(pair, gap: float | None = None, sigma_x: float | None = None)
         return MeasuredRange("moving alike", 0.0, 0.0, 0, 0, "where the buildings move alike (no pounding, exactly)")
     gap = pair.case.contact.gap if gap is None else float(gap)
     sigma_x = pair.response_with_residual.sigma_relative_displacement if sigma_x is None else sigma_x
-    spectrum = _force_table(pair)
+    spectrum = force_table(pair.case, pair.yielding)
     regime = accuracy_regime(gap, sigma_x, pair.residual_share, pair.bandwidth)
     entry = _force_entry(spectrum, regime, pair.yielding)
     if spectrum == "other loops":  # measured on the storeys given the engineer's way, under any spectrum
@@ -299,7 +308,7 @@ def assess(pair, gap: float, sigma_x: float, required_gap: float, target_probabi
         drift = accuracy_data()["required_gap"]["clough-penzien, yielding"]
         warnings.append("A building yields and the spectrum has no low frequencies: the estimate misses its plastic "
                         f"drift; up to {100 * drift['max']:.0f} % of records pounded at the gap for 95 %. {_CHECK}")
-    table = _force_table(pair)
+    table = force_table(pair.case, pair.yielding)
     if share > RESIDUAL_SHARE_LIMIT:
         warnings.append(f"Storeys near elastic-perfectly plastic sway {100 * share:.0f} % more than their linear equivalent: the "
                         f"force may be off by {_bounded_span(_force_entry(table, 'large residual', yielding))}. {_CHECK}")

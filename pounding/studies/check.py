@@ -43,7 +43,7 @@ from pounding.simulation.monte_carlo import design_gap, gap_from_peaks, simulate
 from pounding.simulation.plan import MonteCarloPlan, as_plan
 from pounding.simulation.result import SimulationResult
 
-__all__ = ["EstimateCheck", "check_estimate", "unpounded_bound"]
+__all__ = ["EstimateCheck", "check_estimate", "check_gap_for_capacity", "unpounded_bound"]
 
 _SMALLEST_CHUNK = 25
 """Fewest records of a chunk after the first, where the interval asks for only a few more."""
@@ -338,3 +338,17 @@ def _joined(parts: list[SimulationResult]) -> SimulationResult:
     arrays = {f.name: np.concatenate([getattr(p, f.name) for p in parts]) for f in dataclasses.fields(SimulationResult)
               if isinstance(getattr(parts[0], f.name), np.ndarray)}
     return dataclasses.replace(parts[0], **arrays)
+
+
+def check_gap_for_capacity(estimate: Estimate, capacity: float, check: EstimateCheck) -> dict:
+    """The Monte Carlo at the closed form's gap for a ``capacity`` [N] (:meth:`Estimate.gap_for_capacity`), on the
+    records of ``check`` (its count and seed; a recorded suite's own records, each once): the gap [m], the records,
+    the fraction whose F_max exceeds the capacity with its 95 % Wilson interval, and ``holds``: whether that interval
+    reaches down to the target 1 - ``estimate.target_probability``."""
+    gap = estimate.gap_for_capacity(capacity)
+    case = estimate.case
+    at_gap = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=gap))
+    study = simulate(at_gap) if case.recorded else simulate(at_gap, records=check.records, seed=check.seed)
+    exceedance = study.exceedance(capacity)
+    holds = exceedance["probability_exceeding_interval"][0] <= 1.0 - estimate.target_probability
+    return {"gap": gap, "records": study.n_records, **exceedance, "holds": bool(holds)}
