@@ -26,6 +26,8 @@ __all__ = [
     "MAX_RECORDS",
     "MAX_SAMPLES_PER_RECORD",
     "MAX_STOREYS",
+    "MAX_BUILDINGS",
+    "MAX_ROW_STOREYS",
     "MAX_SWEEP_POINTS",
     "MAX_TIME_HISTORIES",
     "MAX_SYNTHESIS_SAMPLES",
@@ -135,6 +137,11 @@ MAX_TIME_HISTORIES = 10_000_000
 2 ms each, a day on one core. Each factor has its own limit; their product 1e10 would run for months."""
 MAX_STOREYS = 20
 """Storeys per building: the closed form of a 20 + 20-storey case takes 14 s and 1.8 GB (10 + 10: 1.6 s, 0.3 GB; it grows steeply: 50 + 50 takes minutes)."""
+MAX_BUILDINGS = 8
+"""Buildings in a row: a city block's frontage; the time histories' state grows with every floor of the row."""
+MAX_ROW_STOREYS = 60
+"""Storeys of all the buildings of a row together: three 20-storey buildings (the time histories integrate every
+floor in one state, 3 x 60 values; the closed form takes each contact's two buildings, each within :data:`MAX_STOREYS`)."""
 MAX_SWEEP_POINTS = 10_000
 """Points of a parametric study (the product of the --vary counts): 10,000 are checked and loaded in 2 s, 0.15 GB; their estimates take 2 min on one core, plus their records."""
 MAX_CASE_FILE_BYTES = 1_000_000

@@ -18,7 +18,7 @@ def make_case(buildings, gap=0.01, stiffness=2e9, restitution=0.65, levels=(1, 1
     return Case(
         excitation=Excitation(spectrum, duration, envelope, time_step=time_step),
         buildings=tuple(buildings),
-        contact=Contact(gap=gap, stiffness=stiffness, restitution=restitution, levels=levels, model=model),
+        contacts=Contact(gap=gap, stiffness=stiffness, restitution=restitution, levels=levels, model=model),
         name="test",
     )
 

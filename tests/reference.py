@@ -19,10 +19,10 @@ def jankowski(delta, delta_dot, beta, xi, reduced_mass):
 
 
 def solve_reference(case, record, time_step, rtol=1e-9):
-    """Integrate the case under ``record`` with DOP853.
+    """Integrate the case (a row of buildings, any contacts) under ``record`` with DOP853.
 
-    Returns the solution (impact onsets in ``t_events[0]``) and a function
-    giving the pounding force at given times from the dense output.
+    Returns the solution (impact onsets of contact c in ``t_events[c]``) and a function giving each
+    contact's pounding force at given times from the dense output, shape (contacts, times).
     """
     buildings = []
     for building in case.buildings:
@@ -32,29 +32,35 @@ def solve_reference(case, record, time_step, rtol=1e-9):
             for s, c in zip(storeys, building.storey_damping())
         ])
     sizes = [len(b) for b in buildings]
+    offsets = [sum(sizes[:b]) for b in range(len(sizes))]
     n = sum(sizes)
-    contact = case.contact
-    xi = contact.damping_ratio()
-    m_reduced = case.reduced_mass
-    level_1, level_2 = contact.levels
+    contacts = [(c, c.damping_ratio(), case.reduced_mass_of(c)) for c in case.contacts]
     last = record.size - 1
 
-    def penetration(y):
+    def floor(y, building, level, velocity=False):
         # Floor displacement = sum of the drifts below it.
-        d1 = sum(y[:level_1])
-        v1 = sum(y[n : n + level_1])
-        d2 = sum(y[sizes[0] : sizes[0] + level_2])
-        v2 = sum(y[n + sizes[0] : n + sizes[0] + level_2])
-        return d1 - d2 - contact.gap, v1 - v2
+        start = offsets[building - 1] + (n if velocity else 0)
+        return sum(y[start : start + level])
+
+    def penetration(y, contact):
+        (left, right), (level_left, level_right) = contact.between, contact.levels
+        return (floor(y, left, level_left) - floor(y, right, level_right) - contact.gap,
+                floor(y, left, level_left, True) - floor(y, right, level_right, True))
+
+    def forces(y):
+        return [jankowski(*penetration(y, c), c.stiffness, xi, m) for c, xi, m in contacts]
 
     def rhs(t, y):
         k = min(int(t / time_step), last - 1)
         a_g = record[k] + (record[k + 1] - record[k]) * (t / time_step - k)
-        delta, delta_dot = penetration(y)
-        force = jankowski(delta, delta_dot, contact.stiffness, xi, m_reduced)
+        external = [[0.0] * size for size in sizes]  # contact forces on each floor
+        for (contact, _, _), force in zip(contacts, forces(y)):
+            (left, right), (level_left, level_right) = contact.between, contact.levels
+            external[left - 1][level_left - 1] -= force
+            external[right - 1][level_right - 1] += force
         dydt = np.empty(3 * n)
         dydt[:n] = y[n : 2 * n]
-        for b, offset in ((0, 0), (1, sizes[0])):
+        for b, offset in enumerate(offsets):
             shears = []
             for i, (m, stiffness, c, alpha, A, beta, gamma, n_bw) in enumerate(buildings[b]):
                 u, u_dot, z = y[offset + i], y[n + offset + i], y[2 * n + offset + i]
@@ -63,25 +69,23 @@ def solve_reference(case, record, time_step, rtol=1e-9):
             shears.append(0.0)
             below = 0.0  # acceleration of the floor below, relative to the ground
             for i, (m, *_rest) in enumerate(buildings[b]):
-                floor_force = -shears[i] + shears[i + 1]
-                if b == 0 and i == level_1 - 1:
-                    floor_force -= force
-                if b == 1 and i == level_2 - 1:
-                    floor_force += force
-                acceleration = floor_force / m - a_g
+                acceleration = (-shears[i] + shears[i + 1] + external[b][i]) / m - a_g
                 dydt[n + offset + i] = acceleration - below
                 below = acceleration
         return dydt
 
-    def onset(t, y):
-        return penetration(y)[0]
+    def onset_event(contact):
+        def onset(t, y):
+            return penetration(y, contact)[0]
+        onset.direction = 1
+        return onset
 
-    onset.direction = 1
     solution = solve_ivp(rhs, (0, last * time_step), np.zeros(3 * n), method="DOP853", rtol=rtol,
-                         atol=rtol * 1e-3, max_step=time_step, dense_output=True, events=onset)
+                         atol=rtol * 1e-3, max_step=time_step, dense_output=True,
+                         events=[onset_event(c) for c, _, _ in contacts])
 
     def force_at(times):
         states = solution.sol(times)
-        return np.array([jankowski(*penetration(y), contact.stiffness, xi, m_reduced) for y in states.T])
+        return np.array([forces(y) for y in states.T]).T
 
     return solution, force_at

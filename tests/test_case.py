@@ -162,7 +162,7 @@ def test_bad_input_names_the_field(path, value, field):
 def test_missing_building_is_named():
     data = tomllib.loads(PAPER_UNITS)
     data["buildings"] = data["buildings"][:1]
-    with pytest.raises(CaseError, match="buildings: exactly two"):
+    with pytest.raises(CaseError, match=r"buildings: two or more \[\[buildings\]\] tables"):
         case_from_dict(data)
 
 

@@ -257,6 +257,6 @@ def test_a_restitution_below_the_smallest_is_refused_and_at_it_both_methods_agre
     with pytest.raises(CaseError, match=r"restitution.*\[0\.001, 1\]"):
         Contact(gap=1e-3, stiffness=2.0e9, restitution=1e-300)
     case = load_case("section5-T2-0.4")
-    case = dataclasses.replace(case, contact=dataclasses.replace(case.contact, restitution=MIN_RESTITUTION))
+    case = case.with_contact(restitution=MIN_RESTITUTION)
     closed, study = estimate(case).force_expected, simulate(case, records=40, seed=2).force_max_mean
     assert closed == pytest.approx(study, rel=0.15)

@@ -419,5 +419,5 @@ def test_the_headline_opens_on_the_codes_clauses_and_gives_the_gap_for_the_capac
     gap = re.search(r"<span class=\"value gap-capacity\">([\d.,]+) mm</span>", page)
     shown = float(gap.group(1).replace(",", "")) / 1e3
     assert shown == pytest.approx(result.gap_for_capacity(4.1e5), abs=6e-5)  # as shown, to the 0.01 mm printed
-    wide = dataclasses.replace(result.case, contact=dataclasses.replace(result.case.contact, gap=0.3))
+    wide = result.case.with_contact(gap=0.3)
     assert "not met" not in re.search(r'<p class="code-clauses">.*?</p>', headline_html(estimate(wide))).group(0)

@@ -27,7 +27,7 @@ def test_pin_change_the_gap_compare_and_export_the_pair(dashboard, tmp_path):
     page, shown = dashboard, display("SI")
     case = load_case(DEFAULT)
     pinned = estimate(case)
-    current = estimate(dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=0.030)))
+    current = estimate(case.with_contact(gap=0.030))
     force = differences(pinned, current)[0]
 
     page.get_by_role("button", name="Pin this state").click()  # enabled once the plots of the state shown are in

@@ -20,7 +20,7 @@ DEFAULT = "section5-T2-0.4"
 
 def _at_gap(gap_m: float):
     case = load_case(DEFAULT)
-    return dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=gap_m))
+    return case.with_contact(gap=gap_m)
 
 
 def _cells(text: str, row: str) -> list[str]:

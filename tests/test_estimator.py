@@ -22,7 +22,7 @@ def _with(case, gap=None, restitution=None):
         contact = dataclasses.replace(contact, gap=gap)
     if restitution is not None:
         contact = dataclasses.replace(contact, restitution=restitution)
-    return dataclasses.replace(case, contact=contact)
+    return dataclasses.replace(case, contacts=(contact,))
 
 
 @pytest.mark.parametrize("period_2", ["0.4", "0.6", "0.8"])

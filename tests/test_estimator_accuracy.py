@@ -117,7 +117,7 @@ def test_pounding_probability_against_the_simulated_fraction(gap_over_sigma):
     Poisson count of impacts a probability of pounding."""
     base = varied_case(load_case("section5-T2-0.4"), elastic=True)
     sigma = estimate(base).sigma_relative_displacement
-    case = dataclasses.replace(base, contact=dataclasses.replace(base.contact, gap=gap_over_sigma * sigma))
+    case = base.with_contact(gap=gap_over_sigma * sigma)
     result = simulate(case, records=400, seed=41)
     predicted = estimate(case).pounding_probability
     fraction = result.pounding_fraction
@@ -150,7 +150,7 @@ def _share(result) -> float:
 
 def _at_gap(case, gap_over_sigma):
     sigma = estimate(case).sigma_relative_displacement
-    return dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=gap_over_sigma * sigma))
+    return case.with_contact(gap=gap_over_sigma * sigma)
 
 
 def test_the_measured_accuracy_stated_is_that_of_the_regime():
@@ -277,7 +277,7 @@ def test_required_gap_is_on_the_safe_side_for_elastic_pairs(periods):
     Vanmarcke's clumps gave 7.7 % for the close periods 1.2 / 0.8 s."""
     case = varied_case(load_case("section5-T2-0.4"), elastic=True, periods=periods)
     result = estimate(case, target_probability=0.95)
-    at_gap = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=result.required_gap))
+    at_gap = case.with_contact(gap=result.required_gap)
     records = 1500
     fraction = simulate(at_gap, records=records, seed=43).pounding_fraction
     assert fraction <= 0.05 + 2.5 * math.sqrt(0.05 * 0.95 / records)
@@ -319,7 +319,7 @@ def test_plastic_drift_without_low_frequency_motion_is_flagged_and_real():
     result = estimate(case, target_probability=0.95)
     assert any("drift" in warning and "pounding estimate --check" in warning for warning in result.warnings)
     assert "Clough-Penzien" in result.measured_accuracy
-    at_gap = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=result.required_gap))
+    at_gap = case.with_contact(gap=result.required_gap)
     records = 400
     fraction = simulate(at_gap, records=records, seed=44).pounding_fraction
     assert fraction > 0.05 + 2 * math.sqrt(0.05 * 0.95 / records)
@@ -339,7 +339,7 @@ def test_narrow_band_pairs_are_flagged_where_vanmarcke_over_clumps():
     broad-band Section 5 pair must not."""
     base = varied_case(load_case("section5-T2-0.4"), elastic=True, periods=(1.2, 0.8))
     sigma = estimate(base).sigma_relative_displacement
-    case = dataclasses.replace(base, contact=dataclasses.replace(base.contact, gap=1.5 * sigma))
+    case = base.with_contact(gap=1.5 * sigma)
     result = estimate(case)
     assert result.crossings.bandwidth < 0.3
     assert any("sway at nearly one frequency" in warning and "pounding estimate --check" in warning for warning in result.warnings)

@@ -215,7 +215,7 @@ def _with_contact_stiffness(stiffness: float, duration: float | None = None):
     case = load_case(PRESET)
     if duration is not None:
         case = dataclasses.replace(case, excitation=dataclasses.replace(case.excitation, duration=duration))
-    return dataclasses.replace(case, contact=dataclasses.replace(case.contact, stiffness=stiffness))
+    return case.with_contact(stiffness=stiffness)
 
 
 def test_a_force_no_building_takes_is_warned_about(tmp_path, capsys):

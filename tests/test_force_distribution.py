@@ -50,7 +50,7 @@ def test_a_wide_gap_has_no_force_at_its_quantiles():
     case = load_case("section5-T2-0.4")
     import dataclasses
 
-    wide = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=0.6))
+    wide = case.with_contact(gap=0.6)
     closed = estimate(wide)
     assert closed.force_max_distribution.quantile(0.5) == 0.0
     assert closed.probability_exceeding(1e3) <= closed.pounding_probability + 1e-12
@@ -107,11 +107,11 @@ def test_the_gap_for_a_capacity_holds_the_records_to_the_target():
     capacity = 3.0e5
     gap = result.gap_for_capacity(capacity)
     assert 0.0 < gap < result.required_gap  # a force the slab takes needs less than no contact at all
-    at_gap = dataclasses.replace(result.case, contact=dataclasses.replace(result.case.contact, gap=gap))
+    at_gap = result.case.with_contact(gap=gap)
     assert estimate(at_gap).probability_exceeding(capacity) == pytest.approx(0.05, abs=1e-3)
     fraction = simulate(at_gap, records=600, seed=3).exceedance(capacity)["probability_exceeding"]
     assert 0.025 <= fraction <= 0.10
-    touching = dataclasses.replace(result.case, contact=dataclasses.replace(result.case.contact, gap=0.0))
+    touching = result.case.with_contact(gap=0.0)
     assert simulate(touching, records=100, seed=3).exceedance(capacity)["probability_exceeding"] > 0.3
     # a weaker connection needs a wider gap; one stronger than any impact needs none
     assert result.gap_for_capacity(1.0e5) > gap

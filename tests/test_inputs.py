@@ -171,7 +171,7 @@ def test_si_files_quote_si_units():
 @pytest.mark.parametrize(
     "build, field, quoted",
     [
-        (lambda: dataclasses.replace(CASE, contact="x"), "contact", "str 'x'"),
+        (lambda: dataclasses.replace(CASE, contacts="x"), "contacts", "str 'x'"),
         (lambda: dataclasses.replace(CASE, excitation=5), "excitation", "int 5"),
         (lambda: dataclasses.replace(CASE, buildings=(CASE.buildings[0], "x")), "buildings.2", "str 'x'"),
         (lambda: dataclasses.replace(CASE, buildings=CASE.buildings[0]), "buildings", "Building"),

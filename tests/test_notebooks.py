@@ -87,7 +87,7 @@ from pounding.display_units import display
 before = readout.object
 restitution_slider.value = 0.5  # as a student moves the slider [-]
 paper = pounding.load_case("section5-T2-0.4")
-r = pounding.estimate(dataclasses.replace(paper, contact=dataclasses.replace(paper.contact, restitution=0.5)))
+r = pounding.estimate(paper.with_contact(restitution=0.5))
 print(json.dumps({"before": before, "after": readout.object, "input": lesson.restitution, "set": 0.5,
                   "expected": [display("SI").force(r.paper.force_expected), display("SI").force(r.force_expected)],
                   "plotted": float(restitution_dots(lesson.restitution).dimension_values(1)[1]), "library": r.force_expected / 1e3}))
@@ -99,7 +99,7 @@ from pounding.display_units import display
 before = readout.object
 gap_slider.value = 120.0  # as a student moves the slider [mm]
 paper = pounding.load_case("section5-T2-0.4")
-r = pounding.estimate(dataclasses.replace(paper, contact=dataclasses.replace(paper.contact, gap=0.12)))
+r = pounding.estimate(paper.with_contact(gap=0.12))
 print(json.dumps({"before": before, "after": readout.object, "input": lesson.gap, "set": 120.0,
                   "expected": ["120 mm", display("SI").force(r.force_expected), f"{100 * r.pounding_probability:.3g} %"],
                   "plotted": float(force_dot(lesson.gap).dimension_values(1)[0]), "library": r.force_expected / 1e3}))

@@ -46,7 +46,7 @@ def test_the_design_gap_integrates_the_records_simulate_does():
     plan = MonteCarloPlan(records=40, seed=7)
     gap = design_gap(CASE, 0.9, plan)
     case = load_case(CASE)
-    free = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=20.0))
+    free = case.with_contact(gap=20.0)
     np.testing.assert_array_equal(gap.peaks, simulate(free, plan).relative_displacement_max)
     assert gap.gap == pytest.approx(np.sort(gap.peaks)[35])  # the 36th of 40 peaks: 90 % stay below
     assert design_gap(CASE, 0.9, plan, first_record=5).peaks.tolist() == gap.peaks.tolist()  # always from record 0

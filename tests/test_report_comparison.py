@@ -20,7 +20,7 @@ DEFAULT = "section5-T2-0.4"
 @pytest.fixture(scope="module")
 def states():
     case = load_case(DEFAULT)
-    wider = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=0.030, restitution=0.5))
+    wider = case.with_contact(gap=0.030, restitution=0.5)
     return compute_snapshot(case), compute_snapshot(wider)
 
 

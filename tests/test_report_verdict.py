@@ -128,7 +128,7 @@ def test_monte_carlo_points_of_the_gap_curve_are_simulate_at_those_gaps(tmp_path
     counted = []
     points = gap_points(case, gaps, records=15, seed=4, progress=lambda done, total: counted.append((done, total)))
     for gap, point in zip(gaps, points):
-        at_gap = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=float(gap)))
+        at_gap = case.with_contact(gap=float(gap))
         assert point == MonteCarloPoint.from_result(simulate(at_gap, records=15, seed=4))
     assert counted[-1] == (30, 30)
     # the report draws them, and its caption quotes them
@@ -199,7 +199,7 @@ def test_the_report_opens_on_the_codes_clauses_and_says_whether_the_gap_is_adequ
     case = load_case("section5-T2-0.4")
     snapshot = compute_snapshot(case)
     if gap_factor is not None:
-        case = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=gap_factor * snapshot.estimate.required_gap))
+        case = case.with_contact(gap=gap_factor * snapshot.estimate.required_gap)
         snapshot = compute_snapshot(case)
     sentence = gap_sentence(snapshot)
     assert ("is adequate" if adequate else "is not adequate") in sentence

@@ -129,7 +129,7 @@ def test_residual_brings_sigma_x_of_weakly_yielding_buildings_to_the_simulation(
     case = dataclasses.replace(
         case,
         excitation=dataclasses.replace(case.excitation, synthesis_factor=8, duration=40.0),
-        contact=dataclasses.replace(case.contact, gap=10.0),
+        contacts=(dataclasses.replace(case.contact, gap=10.0),),
     )
     first, second = case.contact.levels[0] - 1, case.buildings[0].n_storeys + case.contact.levels[1] - 1
     squares = []

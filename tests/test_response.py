@@ -53,13 +53,13 @@ def test_routes_agree_at_any_pair_of_contact_floors(levels):
     from pounding.studies.paper_tables import mdof_case
 
     case = mdof_case()
-    case = dataclasses.replace(case, contact=dataclasses.replace(case.contact, levels=levels))
+    case = case.with_contact(levels=levels)
     pair = LinearizedPair.of(case)
     lyapunov, frequency = pair.stationary_response, pair.response_frequency()
     for name in DERIVED:
         np.testing.assert_allclose(getattr(frequency, name), getattr(lyapunov, name), rtol=1e-6, err_msg=name)
     # The floor asked for, not another: each building's floors sway more the higher they are.
-    lowest = LinearizedPair(dataclasses.replace(case, contact=dataclasses.replace(case.contact, levels=(1, 1))), pair.buildings)
+    lowest = LinearizedPair(case.with_contact(levels=(1, 1)), pair.buildings)
     lowest = lowest.stationary_response
     for building, level in enumerate(levels):
         if level > 1:

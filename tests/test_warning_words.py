@@ -37,7 +37,7 @@ PRESET = "section5-T2-0.4"
 
 
 def _with(case, **contact):
-    return dataclasses.replace(case, contact=dataclasses.replace(case.contact, **contact))
+    return case.with_contact(**contact)
 
 
 def _closed_form_texts():

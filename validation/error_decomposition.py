@@ -69,7 +69,7 @@ RATE_RECORDS = 200
 def contact_motion(case, record, contact: bool = True) -> tuple[np.ndarray, np.ndarray]:
     """X = x1 - x2 [m] and V [m/s] of the contact floors over ``record``, with
     contact or without it (the gap moved to 10 m)."""
-    model = case if contact else dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=10.0))
+    model = case if contact else case.with_contact(gap=10.0)
     history = integrate(model, record, case.excitation.time_step)
     level_1, level_2 = case.contact.levels
     velocity = history.velocity[:, history.floor(1, level_1)] - history.velocity[:, history.floor(2, level_2)]

@@ -96,7 +96,7 @@ def rows(pair_names=None, record_ids=None, fitted_process: bool = True, seed: in
     fit_rows: dict[tuple, dict] = {}
     case_rows = []
     for name, pair, also in distinct_pairs(pair_names):
-        case = dataclasses.replace(base, buildings=pair.buildings, contact=pair.contact, name=f"far-field, {name}")
+        case = dataclasses.replace(base, buildings=pair.buildings, contacts=pair.contacts, name=f"far-field, {name}")
         periods = fundamental_periods(case)
         key = tuple(round(t, 3) for t in periods)  # the frames' 1.2 s is the one-storey buildings' to 1e-3 s
         if motions.suite is not None and key not in fit_rows:

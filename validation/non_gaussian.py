@@ -170,7 +170,7 @@ def simulated_excess_kurtosis(case, records: int = KURTOSIS_RECORDS) -> np.ndarr
     """Excess kurtosis of X, V and of the two contact floors' displacements x1, x2 of the free motion, each
     sample over the ensemble's RMS at its time (so a modulated record's envelope does not count), where that
     RMS exceeds half its largest value and after the first SETTLED seconds."""
-    free = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=10.0))
+    free = case.with_contact(gap=10.0)
     step = case.excitation.time_step
     level_1, level_2 = case.contact.levels
     paths = []

@@ -68,7 +68,7 @@ def main(cases: int | None = None, records: int = RECORDS, design_records: int =
     print("|---|---|---|---|")
     for case in first(design_cases(), cases):
         result = estimate(case, target_probability=0.95)
-        at_gap = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=result.required_gap))
+        at_gap = case.with_contact(gap=result.required_gap)
         fraction = simulate(at_gap, records=design_records, seed=DESIGN_SEED).pounding_fraction
         print(f"| {case.name} | {100 * result.sigma_relative_displacement:.2f} | {100 * result.required_gap:.2f} | {fraction:.3f} |")
 

@@ -70,7 +70,7 @@ def design_gap_fraction(case, records: int = DESIGN_RECORDS, target: float = 0.9
     """The estimate of ``case`` for ``target`` and the fraction of ``records`` simulated records (seed 9)
     that pound at the gap it gives for ``target``."""
     result = estimate(case, target_probability=target)
-    at_gap = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=result.required_gap))
+    at_gap = case.with_contact(gap=result.required_gap)
     return result, simulate(at_gap, records=records, seed=DESIGN_SEED).pounding_fraction
 
 

@@ -46,7 +46,7 @@ CASES = ("section5-T2-0.4", "section5-T2-0.8", "section6-T2-0.4", "section6-T2-0
 
 def simulated_statistics(case, records: int = RECORDS):
     """sigma_X [m], sigma_V [m/s] and corr(v1, v2) of the nonlinear pair without contact (``records`` records)."""
-    free = dataclasses.replace(with_excitation(case, duration=DURATION), contact=dataclasses.replace(case.contact, gap=10.0))
+    free = with_excitation(case, duration=DURATION).with_contact(gap=10.0)
     first = free.contact.levels[0] - 1
     second = free.buildings[0].n_storeys + free.contact.levels[1] - 1
     sums = np.zeros(5)  # X^2, V^2, v1^2, v2^2, v1 v2

@@ -67,7 +67,7 @@ def apart_cases() -> list:
         key = (case.buildings, case.excitation, case.contact.levels)
         if key not in seen:
             seen.add(key)
-            chosen.append(dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=APART)))
+            chosen.append(case.with_contact(gap=APART))
     return chosen
 
 

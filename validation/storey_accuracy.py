@@ -80,7 +80,7 @@ def storey_case(rng: np.random.Generator, index: int):
     storey = "elastic" if elastic else f"beta_share {share:g}, n {n:g}, alpha {ratio:.2f}, yield {over_sigma:.2f} sigma"
     name = (f"{index:2d} T {periods[0]:.2f}/{periods[1]:.2f} s {hazard}, gap {gap_over_sigma:.2f} sigma_X e {restitution:.2f}, "
             f"{storey}")
-    case = dataclasses.replace(base, buildings=tuple(buildings), contact=contact, name=name)
+    case = dataclasses.replace(base, buildings=tuple(buildings), contacts=(contact,), name=name)
     return case, {"share": None if elastic else share, "n": None if elastic else n, "alpha": None if elastic else ratio,
                   "yield_drift": None if elastic else drifts, "yield_over_sigma": None if elastic else over_sigma,
                   "spectrum": spectrum}

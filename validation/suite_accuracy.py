@@ -127,7 +127,7 @@ def rows(records: int = RECORDS, suite_names=None, pair_names=None, pga_each: bo
                 "fitted_expected_pga": expected_peak_ground_acceleration(base.excitation) / G,
             })
             for pair_name, pair in grid.items():
-                case = dataclasses.replace(base, buildings=pair.buildings, contact=pair.contact, name=f"{name}, {pair_name}")
+                case = dataclasses.replace(base, buildings=pair.buildings, contacts=pair.contacts, name=f"{name}, {pair_name}")
                 case_rows.append({"suite": name, "pair": pair_name, **compare(case, len(motions), seed, fitted_process)})
     return suite_rows, case_rows
 

@@ -41,7 +41,7 @@ def diagnose(name: str, records: int = RECORDS, duration: float = DURATION) -> N
     """The table of the case ``name``: ``records`` records of ``duration`` [s] without contact."""
     case = load_case(name)
     gap = case.contact.gap
-    free = replace(case, contact=replace(case.contact, gap=10.0), excitation=replace(case.excitation, duration=duration))
+    free = replace(case.with_contact(gap=10.0), excitation=replace(case.excitation, duration=duration))
     first = free.contact.levels[0] - 1
     second = free.buildings[0].n_storeys + free.contact.levels[1] - 1
     times = np.arange(SKIP, duration, STEP)

@@ -1,4 +1,4 @@
-"""A case: the excitation, two buildings and the contact between them.
+"""A case: the excitation, a row of buildings and the contacts between neighbours.
 
 Cases load from TOML (see README.md for the schema) or from a built-in
 preset; quantities are converted to SI here, once.
@@ -27,22 +27,26 @@ from pounding.mechanics.structures import BoucWen, Building, Storey, check_store
 from pounding.presets import preset_description, preset_names, preset_text
 from pounding.units import SI, UNIT_SYSTEMS, UnitSystem, unit_system
 
-__all__ = ["DEFAULT_PRESET", "Case", "as_case", "case_from_dict", "load_case", "preset_description", "preset_names", "read_case_file"]
+__all__ = ["ALIGNED", "DEFAULT_PRESET", "Case", "as_case", "case_from_dict", "check_row_size", "contact_label", "load_case",
+           "preset_description", "preset_names", "read_case_file"]
 
 DEFAULT_PRESET = defaults.CASE
 
 
 @dataclass(frozen=True)
 class Case:
-    """Two adjacent buildings under a random ground motion.
+    """Adjacent buildings in a row under a random ground motion, and the
+    contacts between neighbouring floors.
 
     Parameters
     ----------
     excitation : Excitation
-    buildings : tuple of two Building
-        Building 1 stands left of building 2: a positive displacement of
-        building 1 closes the gap.
-    contact : Contact
+    buildings : tuple of Building
+        Two or more, left to right: a positive displacement of a building
+        closes the gap to its right neighbour.
+    contacts : tuple of Contact, or one Contact
+        At most one per pair of floors, in the case's order (each names the
+        buildings it joins: ``Contact.between``).
     name, description : str
     units : str
         The unit system the case was written in (for display only: every
@@ -54,8 +58,8 @@ class Case:
     """
 
     excitation: Excitation
-    buildings: tuple[Building, Building]
-    contact: Contact
+    buildings: tuple[Building, ...]
+    contacts: tuple[Contact, ...]
     name: str = "case"
     description: str = ""
     units: str = "SI"
@@ -64,17 +68,15 @@ class Case:
     def __post_init__(self):
         if not isinstance(self.excitation, Excitation):
             raise CaseError("excitation", f"must be an Excitation, got {described(self.excitation)}")
-        buildings = self.buildings
-        if isinstance(buildings, (str, bytes, Mapping)) or not hasattr(buildings, "__len__"):
-            raise CaseError("buildings", f"must be a tuple of two Building, got {described(buildings)}")
-        if len(buildings) != 2:
-            raise CaseError("buildings", f"a case has exactly two buildings, got {len(buildings)}")
-        object.__setattr__(self, "buildings", tuple(buildings))
+        object.__setattr__(self, "buildings", _as_tuple(self.buildings, "buildings", "Building"))
+        if len(self.buildings) < 2:
+            raise CaseError("buildings", f"a case has at least two buildings, got {len(self.buildings)}")
         for index, building in enumerate(self.buildings, start=1):
             if not isinstance(building, Building):
                 raise CaseError(f"buildings.{index}", f"must be a Building, got {described(building)}")
-        if not isinstance(self.contact, Contact):
-            raise CaseError("contact", f"must be a Contact, got {described(self.contact)}")
+        check_row_size(self.buildings)
+        contacts = (self.contacts,) if isinstance(self.contacts, Contact) else self.contacts
+        object.__setattr__(self, "contacts", _as_tuple(contacts, "contacts", "Contact"))
         for key in ("name", "description"):
             if not isinstance(getattr(self, key), str):
                 raise CaseError(key, f"must be a string, got {described(getattr(self, key))}")
@@ -84,12 +86,7 @@ class Case:
             raise CaseError("hazard", f"must be a DesignSpectrum, RecordedMotions or None, got {described(self.hazard)}")
         if isinstance(self.hazard, RecordedMotions):
             _check_record_lengths(self.hazard, self.buildings)
-        for index, (level, building) in enumerate(zip(self.contact.levels, self.buildings), start=1):
-            if level > building.n_storeys:
-                raise CaseError(
-                    "contact.levels",
-                    f"building {index} has {building.n_storeys} storey(s); its contact level must lie in 1..{building.n_storeys}, got {quote(level)}",
-                )
+        _check_contacts(self.contacts, self.buildings)
 
     @property
     def recorded(self) -> bool:
@@ -97,15 +94,94 @@ class Case:
         return isinstance(self.hazard, RecordedMotions)
 
     @property
+    def contact(self) -> Contact:
+        """The case's one contact; :class:`CaseError` naming ``contacts`` when it has several
+        (take each with :meth:`pair`)."""
+        if len(self.contacts) != 1:
+            raise CaseError("contacts", f"the case has {len(self.contacts)} contacts, and this takes one; "
+                                        "each contact's two buildings alone are case.pair(i)")
+        return self.contacts[0]
+
+    def with_contact(self, **changes) -> Case:
+        """The case with its one contact changed (``gap=``, ``restitution=``, ...: :class:`Contact`'s fields)."""
+        return dataclasses.replace(self, contacts=(dataclasses.replace(self.contact, **changes),))
+
+    def floor_mass(self, building: int, level: int) -> float:
+        """Mass of floor ``level`` of building ``building``, both counted from 1 [kg]."""
+        return self.buildings[building - 1].storeys[level - 1].mass
+
+    def reduced_mass_of(self, contact: Contact) -> float:
+        """m1 m2 / (m1 + m2) of the floors ``contact`` joins [kg] (Eq. 4, 13)."""
+        m1, m2 = (self.floor_mass(b, level) for b, level in zip(contact.between, contact.levels))
+        return m1 * m2 / (m1 + m2)
+
+    @property
     def contact_masses(self) -> tuple[float, float]:
-        """Masses of the two colliding floors [kg]."""
-        return tuple(b.storeys[level - 1].mass for b, level in zip(self.buildings, self.contact.levels))
+        """Masses of the two colliding floors of the one contact [kg]."""
+        return tuple(self.floor_mass(b, level) for b, level in zip(self.contact.between, self.contact.levels))
 
     @property
     def reduced_mass(self) -> float:
-        """m1 m2 / (m1 + m2) of the colliding floors [kg] (Eq. 4, 13)."""
-        m1, m2 = self.contact_masses
-        return m1 * m2 / (m1 + m2)
+        """m1 m2 / (m1 + m2) of the one contact's floors [kg] (Eq. 4, 13)."""
+        return self.reduced_mass_of(self.contact)
+
+    def pair(self, index: int) -> Case:
+        """Contact ``index`` (from 0, the case's order) with its two buildings alone: a two-building case
+        under the same excitation (its name says which contact it is)."""
+        contact = self.contacts[index]
+        if len(self.contacts) == 1 and contact.between == (1, 2) and len(self.buildings) == 2:
+            return self
+        left, right = contact.between
+        return dataclasses.replace(
+            self, buildings=(self.buildings[left - 1], self.buildings[right - 1]),
+            contacts=(dataclasses.replace(contact, between=(1, 2)),), name=f"{self.name}, {contact_label(contact)}",
+        )
+
+
+def contact_label(contact: Contact) -> str:
+    """A contact in words: "buildings 1-2, floors 3/2"."""
+    (left, right), (level_left, level_right) = contact.between, contact.levels
+    return f"buildings {left}-{right}, floors {level_left}/{level_right}"
+
+
+def _as_tuple(values, key: str, kind: str) -> tuple:
+    if isinstance(values, (str, bytes, Mapping)) or not hasattr(values, "__len__"):
+        raise CaseError(key, f"must be a tuple of {kind}, got {described(values)}")
+    return tuple(values)
+
+
+def check_row_size(buildings) -> None:
+    """:class:`CaseError` naming ``buildings`` for a row beyond :data:`~pounding.defaults.MAX_BUILDINGS` or
+    :data:`~pounding.defaults.MAX_ROW_STOREYS` storeys in all."""
+    check_limit("buildings", len(buildings), defaults.MAX_BUILDINGS, "buildings in a row", "assess the row a few buildings at a time")
+    check_limit("buildings", sum(b.n_storeys for b in buildings), defaults.MAX_ROW_STOREYS, "storeys in the row",
+                "lump storeys together or assess fewer buildings")
+
+
+def _check_contacts(contacts: tuple, buildings: tuple, wheres: tuple[str, ...] | None = None) -> None:
+    """Each contact joins neighbours that exist, at floors they have, once; errors name ``wheres`` (the keys as the
+    case file writes them), ``contact`` or ``contacts.i`` by default."""
+    if not contacts:
+        raise CaseError("contacts", "a case needs at least one contact")
+    if wheres is None:
+        wheres = ("contact",) if len(contacts) == 1 else tuple(f"contacts.{i}" for i in range(1, len(contacts) + 1))
+    seen = {}
+    for where, contact in zip(wheres, contacts):
+        if not isinstance(contact, Contact):
+            raise CaseError(where, f"must be a Contact, got {described(contact)}")
+        left, right = contact.between
+        if right > len(buildings):
+            raise CaseError(f"{where}.between", f"building {right} does not exist: the case has {len(buildings)} buildings")
+        for building, level in zip(contact.between, contact.levels):
+            storeys = buildings[building - 1].n_storeys
+            if level > storeys:
+                raise CaseError(f"{where}.levels", f"building {building} has {storeys} storey(s); its contact level must lie "
+                                                   f"in 1..{storeys}, got {quote(level)}")
+        key = (contact.between, contact.levels)
+        if key in seen:
+            raise CaseError(f"{where}.levels", f"floors {contact.levels[0]}/{contact.levels[1]} of buildings {left}-{right} "
+                                               f"already meet in {seen[key]}; give each pair of floors once")
+        seen[key] = where
 
 
 RECORD_PERIODS_MIN = 5.0
@@ -124,12 +200,14 @@ def _check_record_lengths(motions: RecordedMotions, buildings) -> None:
 # Every number is checked here as the file writes it, in the file's units, and
 # only then converted to SI: an error quotes the key and the value as written.
 
-_TOP_KEYS = {"units", "name", "description", "excitation", "buildings", "contact"}
+_TOP_KEYS = {"units", "name", "description", "excitation", "buildings", "contact", "contacts"}
 _BUILDING_KEYS = {"damping_ratio", "storeys"}
 _STOREY_KEYS = {"mass", "stiffness", "period", "damping", "bouc_wen", "hysteresis"}
 _BOUC_WEN_KEYS = {"alpha", "A", "beta", "gamma", "n"}
 _HYSTERESIS_KEYS = {"yield_drift", "yield_force", "post_yield_ratio", "n", "beta_share"}
-_CONTACT_KEYS = {"model", "gap", "stiffness", "restitution", "levels"}
+_CONTACT_KEYS = {"model", "gap", "stiffness", "restitution", "levels", "between"}
+ALIGNED = "aligned"
+"""``levels = "aligned"``: every floor the two buildings share, floor k with floor k (equal storey heights)."""
 
 
 def _bouc_wen(table, units: UnitSystem, where: str) -> BoucWen:
@@ -219,23 +297,46 @@ def _building(table, units: UnitSystem, where: str) -> Building:
     return build(where, Building, built, number(table, "damping_ratio", where, 0.05))
 
 
-def _contact(table, units: UnitSystem) -> Contact:
-    where = "contact"
+def _contacts(table, units: UnitSystem, where: str, buildings: tuple) -> list[tuple[str, Contact]]:
+    """The contacts of one ``[contact]`` or ``[[contacts]]`` table, with the key each is named by: one, or one per
+    shared floor for ``levels = "aligned"``."""
     check_keys(table, _CONTACT_KEYS, where)
     model = table.get("model", "jankowski")
     exponent = contact_law(model, f"{where}.model").stiffness_exponent
+    between = table.get("between", [1, 2])
     levels = table.get("levels", [1, 1])
-    if not isinstance(levels, list):
-        raise CaseError(f"{where}.levels", f"must be two floor numbers [building 1, building 2], got {quote(levels)}")
-    return build(
-        where,
-        Contact,
-        gap=quantity(table, "gap", where, units, strict=False, length=1),
-        stiffness=_contact_stiffness(table, units, where, exponent),
-        restitution=number(table, "restitution", where, 0.65),
-        levels=levels,
-        model=model,
-    )
+    if levels == ALIGNED:
+        between = build(where, Contact, gap=0.0, stiffness=1.0, between=between).between  # checked before it is used
+        if between[1] > len(buildings):
+            raise CaseError(f"{where}.between", f"building {between[1]} does not exist: the case has {len(buildings)} buildings")
+        shared = min(buildings[b - 1].n_storeys for b in between)
+        levels = [[k, k] for k in range(1, shared + 1)]
+    elif not isinstance(levels, list):
+        raise CaseError(f"{where}.levels", f"must be two floor numbers [left building, right building] or {ALIGNED!r}, "
+                                           f"got {quote(levels)}")
+    else:
+        levels = [levels]
+    common = dict(gap=quantity(table, "gap", where, units, strict=False, length=1),
+                  stiffness=_contact_stiffness(table, units, where, exponent),
+                  restitution=number(table, "restitution", where, 0.65), model=model, between=between)
+    return [(where, build(where, Contact, levels=pair, **common)) for pair in levels]
+
+
+def _all_contacts(data, units: UnitSystem, buildings: tuple) -> tuple[Contact, ...]:
+    """The ``[contact]`` table or the ``[[contacts]]`` array, checked against the buildings with the file's keys."""
+    if ("contact" in data) == ("contacts" in data):
+        raise CaseError("contacts", "give one [contact] table or an array of [[contacts]] tables" +
+                        ("" if "contact" in data else "; neither is given"))
+    if "contact" in data:
+        found = _contacts(data["contact"], units, "contact", buildings)
+    else:
+        tables = data["contacts"]
+        if not isinstance(tables, list) or not tables:
+            raise CaseError("contacts", "must be an array of [[contacts]] tables, at least one")
+        found = [item for i, table in enumerate(tables, start=1) for item in _contacts(table, units, f"contacts.{i}", buildings)]
+    wheres, contacts = zip(*found)
+    _check_contacts(contacts, buildings, wheres)
+    return contacts
 
 
 def _contact_stiffness(table, units: UnitSystem, where: str, exponent: float) -> float:
@@ -267,25 +368,28 @@ def case_from_dict(data: Mapping, name: str = "case", base_directory: str | os.P
         raise ArgumentError("case", f"must be the case file's table (a dict), got {described(data)}")
     check_keys(data, _TOP_KEYS, "")
     units = unit_system(data.get("units", SI.name))
-    for key in ("excitation", "buildings", "contact"):
+    for key in ("excitation", "buildings"):
         if key not in data:
             raise CaseError(key, "is required")
     buildings = data["buildings"]
-    if not isinstance(buildings, list) or len(buildings) != 2:
+    if not isinstance(buildings, list) or len(buildings) < 2:
         count = len(buildings) if isinstance(buildings, list) else 0
-        raise CaseError("buildings", f"exactly two [[buildings]] tables are required, got {count}")
+        raise CaseError("buildings", f"two or more [[buildings]] tables are required, left to right, got {count}")
+    check_limit("buildings", len(buildings), defaults.MAX_BUILDINGS, "buildings in a row", "assess the row a few buildings at a time")
     if not isinstance(name, str):
         raise CaseError("name", f"must be a string, got {described(name)}")
+    built = tuple(_building(b, units, f"buildings.{i}") for i, b in enumerate(buildings, start=1))
+    check_row_size(built)
+    contacts = _all_contacts(data, units, built)
     excitation, hazard = read_excitation(data["excitation"], units, Path(base_directory or "."),
-                                         lambda: [float(_building(b, units, f"buildings.{i}").periods[0])
-                                                  for i, b in enumerate(buildings, start=1)])
+                                         lambda: [float(b.periods[0]) for b in built])
     return build(
         "",
         Case,
         excitation=excitation,
         hazard=hazard,
-        buildings=tuple(_building(b, units, f"buildings.{i}") for i, b in enumerate(buildings, start=1)),
-        contact=_contact(data["contact"], units),
+        buildings=built,
+        contacts=contacts,
         name=_text(data, "name", name),
         description=_text(data, "description", ""),
         units=units.name,

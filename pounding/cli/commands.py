@@ -68,7 +68,10 @@ def _simulate(args) -> int:
     if args.design_gap is not None:
         return _print_design_gap(case, result, closed_form, failure, args)
     if args.json:
-        beside = {"error": failure} if closed_form is None else _closed_form_dict(closed_form, capacity)
+        if closed_form is None:
+            beside = {"error": failure}
+        else:
+            beside = closed_form.to_dict() if len(case.contacts) > 1 else _closed_form_dict(closed_form, capacity)
         out = {**result.to_dict(), "closed_form": beside}
         if capacity is not None:
             out.update(capacity=capacity, **result.exceedance(capacity))
@@ -91,6 +94,15 @@ def _simulate(args) -> int:
               f"(95 % interval {100 * low_p:.1f} to {100 * high_p:.1f} %)")
     print(f"pounding        {100 * result.pounding_fraction:.1f} % of records, {result.impacts_mean:.2f} impacts per record")
     print(f"peak impact v   {shown.velocity(float(result.impact_velocity_max.mean()))} (mean over records)")
+    if len(case.contacts) > 1:
+        from pounding.cli.rows import row_simulation_lines
+
+        print("(the force, pounding and impacts above are over all contacts: the largest force, any contact)")
+        for line in row_simulation_lines(result, closed_form, shown):
+            print(line)
+        if closed_form is None:
+            print(f"closed form     n/a: {failure}")
+        return 0
     if closed_form is None:
         print(f"closed form     n/a: {failure}")
         return 0
@@ -168,6 +180,8 @@ def _estimate(args) -> int:
     result = estimate(case, target_probability=args.target_probability, paper_variance=args.paper_variance,
                       michaelov_n1=args.michaelov_n1)
     check = None if args.check is None else _check(case, result, args)
+    if len(case.contacts) > 1:
+        return _estimate_row(case, result, check, capacity, args)
     at_capacity_gap, gap_for_capacity = None, None
     if check is not None and capacity is not None:
         from pounding.studies.check import check_gap_for_capacity
@@ -255,12 +269,31 @@ def _estimate(args) -> int:
     return 0
 
 
+def _estimate_row(case, result, check, capacity, args) -> int:
+    """``estimate`` on a case of several contacts: the largest force over all contacts, then each contact's."""
+    from pounding.cli.rows import row_estimate_lines
+
+    if args.json:
+        out = result.to_dict()
+        if capacity is not None:
+            out.update(capacity=capacity, probability_exceeding=result.probability_exceeding(capacity))
+            for contact, estimate in zip(out["contacts"], result.contacts):
+                contact["gap_for_capacity"] = estimate.gap_for_capacity(capacity)
+        if check is not None:
+            out["check"] = check.to_dict()
+        print(json.dumps(out))
+        return 0
+    for line in row_estimate_lines(case, result, _shown(args), capacity, check):
+        print(line)
+    return 0
+
+
 def _check(case, result, args):
     """``estimate --check [N]``: the Monte Carlo of the same case (:func:`~pounding.studies.check.check_estimate`), its
     progress drawn; a recorded suite runs each of its records once, whatever N and ``--seed`` say (a note says so)."""
     from pounding.cli.parser import ADAPTIVE
     from pounding.simulation.plan import MonteCarloPlan
-    from pounding.studies.check import check_estimate
+    from pounding.studies.check import check_estimate, check_row
 
     records = None if args.check == ADAPTIVE else args.check
     if case.recorded and (records is not None or args.seed is not None):
@@ -268,8 +301,9 @@ def _check(case, result, args):
               f"{len(case.hazard.records)} is integrated once", file=sys.stderr)
         records = None
     seed = defaults.SEED if args.seed is None else args.seed
+    check = check_row if len(case.contacts) > 1 else check_estimate
     with progress_bar() as progress:
-        return check_estimate(result, MonteCarloPlan(records, seed, progress=progress))
+        return check(result, MonteCarloPlan(records, seed, progress=progress))
 
 
 def _validate(args) -> int:

@@ -28,10 +28,12 @@ from pounding.closed_form.gap_aware import (
     gap_for_probability,
     opposing_forces,
 )
+from pounding.closed_form.linearization import linearize_row
 from pounding.closed_form.pair import LinearizedPair
 from pounding.closed_form.paper_method import PaperEstimate, check_michaelov_n1, paper_estimate
 from pounding.closed_form.regimes import MeasuredRange, assess, extreme_warnings, hazard_warnings
 from pounding.closed_form.response import ContactResponse
+from pounding.closed_form.row import RowEstimate, largest_force_distribution
 from pounding.closed_form.separation import CodeCheck, code_checks, separation_rules
 from pounding.errors import ArgumentError, check_limit, check_probability
 from pounding.mechanics.contact import peak_force_ratio
@@ -151,6 +153,11 @@ class Estimate:
         return self.force_max_distribution.probability_exceeding(capacity)
 
     @property
+    def contacts(self) -> tuple[Estimate]:
+        """The estimate of each contact: this one (a :class:`~pounding.closed_form.row.RowEstimate` has several)."""
+        return (self,)
+
+    @property
     def code_checks(self) -> tuple[CodeCheck, ...]:
         """The design codes' separation rules against the case's gap, in the codes' words (:func:`code_checks`)."""
         return code_checks(self.separation_rules, self.case.contact.gap)
@@ -224,8 +231,11 @@ def estimate(
     target_probability: float = defaults.TARGET_PROBABILITY,
     paper_variance: str = defaults.PAPER_VARIANCE,
     michaelov_n1: float = defaults.MICHAELOV_N1,
-) -> Estimate:
+) -> Estimate | RowEstimate:
     """Expected extreme pounding force of ``case`` by both closed forms.
+
+    A case of several contacts gives a :class:`~pounding.closed_form.row.RowEstimate`: each contact's
+    estimate on its two buildings (each building linearized once) and the largest force over all contacts.
 
     Parameters
     ----------
@@ -242,6 +252,8 @@ def estimate(
     """
     check_probability(target_probability)
     check_michaelov_n1(michaelov_n1)
+    if not isinstance(case, LinearizedPair) and len(as_case(case).contacts) > 1:
+        return _row_estimate(as_case(case), target_probability, paper_variance, michaelov_n1)
     pair = _pair(case)
     case = pair.case
     crossings = Crossings.of(pair)
@@ -286,6 +298,18 @@ def estimate(
         measured_accuracy=assessment.measured_accuracy,
         accuracy=assessment.accuracy,
     )
+
+
+def _row_estimate(case: Case, target_probability: float, paper_variance: str, michaelov_n1: float) -> RowEstimate:
+    """Each contact's estimate on its pair of buildings, each building linearized once."""
+    buildings = linearize_row(case)
+    contacts = tuple(
+        estimate(LinearizedPair(case.pair(index), tuple(buildings[b - 1] for b in contact.between)), target_probability,
+                 paper_variance, michaelov_n1)
+        for index, contact in enumerate(case.contacts)
+    )
+    distribution = largest_force_distribution([c.force_max_distribution for c in contacts])
+    return RowEstimate(case, contacts, distribution, float(target_probability))
 
 
 @dataclass(frozen=True)

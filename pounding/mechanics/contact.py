@@ -148,7 +148,7 @@ def hertz_peak_penetration(approach_velocity: float, stiffness: float, reduced_m
 
 @dataclass(frozen=True)
 class Contact:
-    """The impact element between one floor of each building.
+    """The impact element between one floor of each of two neighbouring buildings.
 
     Parameters
     ----------
@@ -159,9 +159,15 @@ class Contact:
     restitution : float
         Coefficient of restitution e, Eq. 6 [-], 0 < e <= 1.
     levels : tuple of int
-        Floor of building 1 and floor of building 2 that meet, counted from 1.
+        The floor of each building that meets, counted from 1 (the left
+        building's first). A floor meeting the other building between two of
+        its floors is modelled as the paper does (Section 6): give that
+        building a floor at the contact's height.
     model : str
         One of :data:`CONTACT_MODELS`.
+    between : tuple of int
+        The two neighbouring buildings, counted from 1 left to right: (i, i + 1).
+        A positive displacement of the left building closes the gap.
     """
 
     gap: float
@@ -169,6 +175,7 @@ class Contact:
     restitution: float = 0.65
     levels: tuple[int, int] = (1, 1)
     model: str = "jankowski"
+    between: tuple[int, int] = (1, 2)
 
     def __post_init__(self):
         contact_law(self.model)
@@ -187,6 +194,7 @@ class Contact:
         if not all(isinstance(v, numbers.Integral) and not isinstance(v, bool) and v >= 1 for v in levels):
             raise wrong
         object.__setattr__(self, "levels", tuple(int(v) for v in levels))
+        object.__setattr__(self, "between", _neighbours(self.between))
 
     @property
     def law(self) -> ContactLaw:
@@ -207,6 +215,22 @@ class Contact:
         """The law's impact damping parameter for ``restitution`` [-]
         (Eq. 5 for ``jankowski``; 3 (1 - e^2) / 4 for ``hertzdamp``; 0 for ``hertz``)."""
         return self.law.damping(self.restitution)
+
+
+def _neighbours(between) -> tuple[int, int]:
+    """``between`` as two neighbouring buildings (i, i + 1), or :class:`CaseError` naming ``between``."""
+    wrong = CaseError("between", f"must be two neighbouring buildings, left first, as [1, 2], got {quote(between)}")
+    if isinstance(between, (str, bytes, dict)) or not hasattr(between, "__len__") or len(between) != 2:
+        raise wrong
+    if not all(isinstance(v, numbers.Integral) and not isinstance(v, bool) and v >= 1 for v in between):
+        raise wrong
+    left, right = (int(v) for v in between)
+    if left == right + 1:
+        raise CaseError("between", f"list the left building first: [{right}, {left}], and give levels in the same order")
+    if right != left + 1:
+        raise CaseError("between", f"buildings {left} and {right} are not neighbours; a contact joins building i and "
+                                   f"building i + 1 (left to right), as [{left}, {left + 1}]")
+    return left, right
 
 
 def undamped_peak_force(contact: Contact, approach_velocity, reduced_mass: float):

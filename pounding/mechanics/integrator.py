@@ -1,8 +1,9 @@
 """The compiled mechanics: the contact laws (Eq. 3-5), the Bouc-Wen law
 (Eq. 2), and every compiled function that calls them: the time-history
-kernel of two shear buildings with Bouc-Wen storeys and an impact element
-under one ground-acceleration record (Eq. 10, 31-32, 38-39), one impact of
-two free masses, and a storey's hysteresis along a drift path.
+kernel of a row of shear buildings with Bouc-Wen storeys and impact elements
+between neighbouring floors under one ground-acceleration record (Eq. 10,
+31-32, 38-39), one impact of two free masses, and a storey's hysteresis
+along a drift path.
 
 Numba's on-disk cache of a compiled function does not notice an edit to a
 compiled function it calls in another file, so every compiled call tree of
@@ -19,7 +20,9 @@ force law's kink at delta = 0 never falls inside a step.
 
 The state is y = (d, v, z): floor displacements relative to the ground,
 their velocities and the storeys' hysteretic displacements, for all floors
-of building 1 then building 2.
+of building 1, then building 2, and so on. Contact c joins floor
+``contact_floors[c, 0]`` (left) to floor ``contact_floors[c, 1]`` (right);
+its penetration is d_left - d_right - gap.
 """
 
 from __future__ import annotations
@@ -34,9 +37,11 @@ JANKOWSKI, HERTZ, HERTZDAMP, LINEAR = range(4)
 
 # Columns of the per-floor parameter table.
 MASS, STIFFNESS, DAMPING, ALPHA, BW_A, BW_BETA, BW_GAMMA, BW_N = range(8)
-# Entries of the contact parameter vector.
+# Columns of the per-contact parameter table.
 C_MODEL, C_GAP, C_STIFFNESS, C_DAMPING_RATIO, C_REDUCED_MASS = range(5)
-# Columns of the per-record summary.
+# The per-record summary: the record's columns, then a block of CONTACT_COLUMNS per contact.
+S_STATUS, S_TIME, S_STEPS = range(3)
+RECORD_COLUMNS = 3
 (
     S_FORCE_MAX,
     S_IMPACTS,
@@ -44,12 +49,9 @@ C_MODEL, C_GAP, C_STIFFNESS, C_DAMPING_RATIO, C_REDUCED_MASS = range(5)
     S_IMPACT_VELOCITY_MAX,
     S_DISPLACEMENT_MAX_1,
     S_DISPLACEMENT_MAX_2,
-    S_STATUS,
-    S_TIME,
-    S_STEPS,
     S_RELATIVE_MAX,
-) = range(10)
-SUMMARY_COLUMNS = 10
+) = range(7)
+CONTACT_COLUMNS = 7
 # Status codes.
 OK, NOT_FINITE, RUNAWAY, STEP_UNDERFLOW, HISTORY_FULL, STEP_LIMIT = range(6)
 TRIALS_PER_SAMPLE = 1000  # step trials allowed per record sample (and a million more): beyond, too stiff to integrate
@@ -134,11 +136,11 @@ def bouc_wen_rate(velocity, z, A, beta, gamma, n):
 
 
 @njit(cache=True, nogil=True)
-def derivatives(ground_acceleration, y, dydt, floors, below, contact, floor_1, floor_2, approach_velocity):
-    """Write dy/dt into ``dydt``; return the pounding force [N].
+def derivatives(ground_acceleration, y, dydt, floors, below, contacts, contact_floors, approach_velocity, forces):
+    """Write dy/dt into ``dydt`` and each contact's pounding force [N] into ``forces``.
 
-    Equations of motion of both shear buildings relative to the ground,
-    M d'' + sum of storey forces + contact = -M 1 a_g (Eq. 10, 38), and Eq. 2
+    Equations of motion of the shear buildings relative to the ground,
+    M d'' + sum of storey forces + contacts = -M 1 a_g (Eq. 10, 38), and Eq. 2
     for every storey.
     """
     n = below.size
@@ -161,14 +163,16 @@ def derivatives(ground_acceleration, y, dydt, floors, below, contact, floor_1, f
         dydt[n + i] -= storey_force
         if j >= 0:
             dydt[n + j] += storey_force
-    penetration = y[floor_1] - y[floor_2] - contact[C_GAP]
-    force = contact_force(int(contact[C_MODEL]), penetration, y[n + floor_1] - y[n + floor_2], contact[C_STIFFNESS],
-                          contact[C_DAMPING_RATIO], contact[C_REDUCED_MASS], approach_velocity)
-    dydt[n + floor_1] -= force
-    dydt[n + floor_2] += force
+    for c in range(contacts.shape[0]):
+        left, right = contact_floors[c, 0], contact_floors[c, 1]
+        force = contact_force(int(contacts[c, C_MODEL]), y[left] - y[right] - contacts[c, C_GAP], y[n + left] - y[n + right],
+                              contacts[c, C_STIFFNESS], contacts[c, C_DAMPING_RATIO], contacts[c, C_REDUCED_MASS],
+                              approach_velocity[c])
+        forces[c] = force
+        dydt[n + left] -= force
+        dydt[n + right] += force
     for i in range(n):
         dydt[n + i] = dydt[n + i] / floors[i, MASS] - ground_acceleration
-    return force
 
 
 @njit(cache=True, nogil=True)
@@ -207,24 +211,9 @@ def _peak_between(t0, f0, t1, f1, t2, f2):
 
 
 @njit(cache=True, nogil=True)
-def integrate_record(
-    record,
-    time_step,
-    y0,
-    floors,
-    below,
-    contact,
-    floor_1,
-    floor_2,
-    rtol,
-    atol,
-    displacement_limit,
-    summary,
-    history_time,
-    history_state,
-    history_force,
-):
-    """Integrate one record; fill ``summary`` (see the S_* columns).
+def integrate_record(record, time_step, y0, floors, below, contacts, contact_floors, rtol, atol, displacement_limit, summary,
+                     history_time, history_state, history_force):
+    """Integrate one record; fill ``summary`` (the S_* columns: the record's, then a block per contact).
 
     Parameters
     ----------
@@ -232,12 +221,14 @@ def integrate_record(
         Ground acceleration at t = k * time_step [m/s^2].
     y0 : ndarray
         Initial state (d, v, z).
+    contacts, contact_floors : ndarray
+        The contacts' parameters (C_* columns) and their (left, right) floors, one row each.
     rtol, atol : float, ndarray
         Relative and per-component absolute tolerances of the local error.
     displacement_limit : float
         A floor displacement beyond this [m] is a runaway response.
     history_time, history_state, history_force : ndarray
-        Filled at every accepted step when ``history_time.size > 0``.
+        Filled at every accepted step when ``history_time.size > 0`` (the force: one column per contact).
 
     Returns
     -------
@@ -246,37 +237,38 @@ def integrate_record(
     """
     n_state = y0.size
     n = below.size
+    n_contacts = contacts.shape[0]
     store = history_time.size > 0
     y = y0.copy()
     y_new = np.empty(n_state)
     y_stage = np.empty(n_state)
     k1, k2, k3, k4 = np.empty(n_state), np.empty(n_state), np.empty(n_state), np.empty(n_state)
     k5, k6, k7 = np.empty(n_state), np.empty(n_state), np.empty(n_state)
-    for c in range(SUMMARY_COLUMNS):
-        summary[c] = 0.0
-    gap = contact[C_GAP]
-    approach_velocity = 0.0
-    force_max = 0.0
-    impacts = 0
-    penetration_max = 0.0
-    impact_velocity_max = 0.0
-    displacement_max_1 = abs(y[floor_1])
-    displacement_max_2 = abs(y[floor_2])
-    # Over the accepted steps, as the onset of an impact is detected: with the gap out of reach this is the
-    # free motion's peak, and a record pounds at gap d exactly when that peak exceeds d.
-    relative_max = y[floor_1] - y[floor_2]
+    forces, stage_forces, approach_velocity = np.zeros(n_contacts), np.zeros(n_contacts), np.zeros(n_contacts)
+    rates, delta_new = np.zeros(n_contacts), np.zeros(n_contacts)
+    summary[:] = 0.0
+    peaks = summary[RECORD_COLUMNS:].reshape((n_contacts, CONTACT_COLUMNS))
+    left, right = contact_floors[:, 0], contact_floors[:, 1]
+    onset = np.zeros(n_contacts, dtype=np.bool_)
+    for c in range(n_contacts):
+        peaks[c, S_DISPLACEMENT_MAX_1] = abs(y[left[c]])
+        peaks[c, S_DISPLACEMENT_MAX_2] = abs(y[right[c]])
+        # Over the accepted steps, as the onset of an impact is detected: with the gap out of reach this is the
+        # free motion's peak, and a record pounds at gap d exactly when that peak exceeds d.
+        peaks[c, S_RELATIVE_MAX] = y[left[c]] - y[right[c]]
     steps = 0
     stored = 0
     h_min = 1e-12 * max(time_step, 1.0)
     trials_left = TRIALS_PER_SAMPLE * record.size + 1_000_000
-    force = derivatives(record[0], y, k1, floors, below, contact, floor_1, floor_2, approach_velocity)
-    # The last two accepted (time, force) samples, for the peak between steps.
-    t_back_2, force_back_2, t_back_1, force_back_1 = -2.0, 0.0, -1.0, force
-    delta_back_2, delta_back_1 = -1.0, -1.0
+    derivatives(record[0], y, k1, floors, below, contacts, contact_floors, approach_velocity, forces)
+    # The last two accepted times, and each contact's force and penetration there, for the peak between steps.
+    t_back_2, t_back_1 = -2.0, -1.0
+    force_back_2, force_back_1 = np.zeros(n_contacts), forces.copy()
+    delta_back_2, delta_back_1 = np.full(n_contacts, -1.0), np.full(n_contacts, -1.0)
     if store:
         history_time[0] = 0.0
         history_state[0, :] = y
-        history_force[0] = force
+        history_force[0, :] = forces
         stored = 1
     h = 0.1 * time_step
     t = 0.0
@@ -293,29 +285,36 @@ def integrate_record(
             if t + h_try >= t_end - 1e-12 * time_step:
                 h_try = t_end - t
                 last = True
-            if y[floor_1] - y[floor_2] <= gap:
-                # Out of contact, the law's memory follows the closing velocity, so that
-                # the step into the next impact starts with the right one (hertzdamp).
-                approach_velocity = max(y[n + floor_1] - y[n + floor_2], 0.0)
+            for c in range(n_contacts):
+                if y[left[c]] - y[right[c]] <= contacts[c, C_GAP]:
+                    # Out of contact, the law's memory follows the closing velocity, so that
+                    # the step into the next impact starts with the right one (hertzdamp).
+                    approach_velocity[c] = max(y[n + left[c]] - y[n + right[c]], 0.0)
             # Dormand-Prince stages; the ground acceleration is linear in t here.
             for i in range(n_state):
                 y_stage[i] = y[i] + h_try * _A21 * k1[i]
-            derivatives(a0 + slope * (t + _C2 * h_try - t_start), y_stage, k2, floors, below, contact, floor_1, floor_2, approach_velocity)
+            derivatives(a0 + slope * (t + _C2 * h_try - t_start), y_stage, k2, floors, below, contacts, contact_floors,
+                        approach_velocity, stage_forces)
             for i in range(n_state):
                 y_stage[i] = y[i] + h_try * (_A31 * k1[i] + _A32 * k2[i])
-            derivatives(a0 + slope * (t + _C3 * h_try - t_start), y_stage, k3, floors, below, contact, floor_1, floor_2, approach_velocity)
+            derivatives(a0 + slope * (t + _C3 * h_try - t_start), y_stage, k3, floors, below, contacts, contact_floors,
+                        approach_velocity, stage_forces)
             for i in range(n_state):
                 y_stage[i] = y[i] + h_try * (_A41 * k1[i] + _A42 * k2[i] + _A43 * k3[i])
-            derivatives(a0 + slope * (t + _C4 * h_try - t_start), y_stage, k4, floors, below, contact, floor_1, floor_2, approach_velocity)
+            derivatives(a0 + slope * (t + _C4 * h_try - t_start), y_stage, k4, floors, below, contacts, contact_floors,
+                        approach_velocity, stage_forces)
             for i in range(n_state):
                 y_stage[i] = y[i] + h_try * (_A51 * k1[i] + _A52 * k2[i] + _A53 * k3[i] + _A54 * k4[i])
-            derivatives(a0 + slope * (t + _C5 * h_try - t_start), y_stage, k5, floors, below, contact, floor_1, floor_2, approach_velocity)
+            derivatives(a0 + slope * (t + _C5 * h_try - t_start), y_stage, k5, floors, below, contacts, contact_floors,
+                        approach_velocity, stage_forces)
             for i in range(n_state):
                 y_stage[i] = y[i] + h_try * (_A61 * k1[i] + _A62 * k2[i] + _A63 * k3[i] + _A64 * k4[i] + _A65 * k5[i])
-            derivatives(a0 + slope * (t + h_try - t_start), y_stage, k6, floors, below, contact, floor_1, floor_2, approach_velocity)
+            derivatives(a0 + slope * (t + h_try - t_start), y_stage, k6, floors, below, contacts, contact_floors,
+                        approach_velocity, stage_forces)
             for i in range(n_state):
                 y_new[i] = y[i] + h_try * (_B1 * k1[i] + _B3 * k3[i] + _B4 * k4[i] + _B5 * k5[i] + _B6 * k6[i])
-            force = derivatives(a0 + slope * (t + h_try - t_start), y_new, k7, floors, below, contact, floor_1, floor_2, approach_velocity)
+            derivatives(a0 + slope * (t + h_try - t_start), y_new, k7, floors, below, contacts, contact_floors,
+                        approach_velocity, forces)
             error = 0.0
             for i in range(n_state):
                 local = h_try * (_E1 * k1[i] + _E3 * k3[i] + _E4 * k4[i] + _E5 * k5[i] + _E6 * k6[i] + _E7 * k7[i])
@@ -334,45 +333,53 @@ def integrate_record(
                 if h < h_min:
                     status = STEP_UNDERFLOW
                 continue
-            # Locate the onset of an impact: end the step on it.
-            delta_0 = y[floor_1] - y[floor_2] - gap
-            delta_1 = y_new[floor_1] - y_new[floor_2] - gap
-            onset = delta_0 <= 0.0 and delta_1 > 0.0
-            if onset:
-                s, rate = _crossing(
-                    delta_0,
-                    delta_1,
-                    h_try * (y[n + floor_1] - y[n + floor_2]),
-                    h_try * (y_new[n + floor_1] - y_new[n + floor_2]),
-                )
-                if 0.01 < s < 0.99 and s * h_try > h_min:
-                    h = s * h_try
-                    continue
-                impacts += 1
-                approach_velocity = rate / h_try
-                impact_velocity_max = max(impact_velocity_max, approach_velocity)
+            # Locate the onset of an impact: end the step on the first one inside it.
+            cut = 1.0
+            any_onset = False
+            for c in range(n_contacts):
+                delta_0 = y[left[c]] - y[right[c]] - contacts[c, C_GAP]
+                delta_new[c] = y_new[left[c]] - y_new[right[c]] - contacts[c, C_GAP]
+                onset[c] = delta_0 <= 0.0 and delta_new[c] > 0.0
+                if onset[c]:
+                    any_onset = True
+                    s, rates[c] = _crossing(delta_0, delta_new[c], h_try * (y[n + left[c]] - y[n + right[c]]),
+                                            h_try * (y_new[n + left[c]] - y_new[n + right[c]]))
+                    if 0.01 < s < 0.99 and s * h_try > h_min:
+                        cut = min(cut, s)
+            if cut < 1.0:
+                h = cut * h_try
+                continue
+            for c in range(n_contacts):
+                if onset[c]:
+                    peaks[c, S_IMPACTS] += 1
+                    approach_velocity[c] = rates[c] / h_try
+                    peaks[c, S_IMPACT_VELOCITY_MAX] = max(peaks[c, S_IMPACT_VELOCITY_MAX], approach_velocity[c])
             # Accept the step.
             t = t_end if last else t + h_try
             steps += 1
             for i in range(n_state):
                 y[i] = y_new[i]
-            if onset:
+            if any_onset:
                 # The law's memory (hertzdamp) changed: re-evaluate the slope.
-                force = derivatives(a0 + slope * (t - t_start), y, k1, floors, below, contact, floor_1, floor_2, approach_velocity)
+                derivatives(a0 + slope * (t - t_start), y, k1, floors, below, contacts, contact_floors, approach_velocity, forces)
             else:
                 for i in range(n_state):
                     k1[i] = k7[i]
-            force_max = max(force_max, abs(force))
-            if force_back_1 > 0.0 and force_back_1 >= force_back_2 and force_back_1 >= force and force_back_2 > 0.0:
-                force_max = max(force_max, _peak_between(t_back_2, force_back_2, t_back_1, force_back_1, t, force))
-            penetration_max = max(penetration_max, delta_1)
-            if delta_back_1 > 0.0 and delta_back_2 > 0.0 and delta_back_1 >= delta_back_2 and delta_back_1 >= delta_1:
-                penetration_max = max(penetration_max, _peak_between(t_back_2, delta_back_2, t_back_1, delta_back_1, t, delta_1))
-            t_back_2, force_back_2, t_back_1, force_back_1 = t_back_1, force_back_1, t, force
-            delta_back_2, delta_back_1 = delta_back_1, delta_1
-            displacement_max_1 = max(displacement_max_1, abs(y[floor_1]))
-            displacement_max_2 = max(displacement_max_2, abs(y[floor_2]))
-            relative_max = max(relative_max, y[floor_1] - y[floor_2])
+            for c in range(n_contacts):
+                force, f1, f2 = forces[c], force_back_1[c], force_back_2[c]
+                peaks[c, S_FORCE_MAX] = max(peaks[c, S_FORCE_MAX], abs(force))
+                if f1 > 0.0 and f1 >= f2 and f1 >= force and f2 > 0.0:
+                    peaks[c, S_FORCE_MAX] = max(peaks[c, S_FORCE_MAX], _peak_between(t_back_2, f2, t_back_1, f1, t, force))
+                delta, d1, d2 = delta_new[c], delta_back_1[c], delta_back_2[c]
+                peaks[c, S_PENETRATION_MAX] = max(peaks[c, S_PENETRATION_MAX], delta)
+                if d1 > 0.0 and d2 > 0.0 and d1 >= d2 and d1 >= delta:
+                    peaks[c, S_PENETRATION_MAX] = max(peaks[c, S_PENETRATION_MAX], _peak_between(t_back_2, d2, t_back_1, d1, t, delta))
+                force_back_2[c], force_back_1[c] = f1, force
+                delta_back_2[c], delta_back_1[c] = d1, delta
+                peaks[c, S_DISPLACEMENT_MAX_1] = max(peaks[c, S_DISPLACEMENT_MAX_1], abs(y[left[c]]))
+                peaks[c, S_DISPLACEMENT_MAX_2] = max(peaks[c, S_DISPLACEMENT_MAX_2], abs(y[right[c]]))
+                peaks[c, S_RELATIVE_MAX] = max(peaks[c, S_RELATIVE_MAX], y[left[c]] - y[right[c]])
+            t_back_2, t_back_1 = t_back_1, t
             for i in range(n):
                 if not abs(y[i]) <= displacement_limit:
                     status = RUNAWAY if math.isfinite(y[i]) else NOT_FINITE
@@ -382,36 +389,28 @@ def integrate_record(
                 else:
                     history_time[stored] = t
                     history_state[stored, :] = y
-                    history_force[stored] = force
+                    history_force[stored, :] = forces
                     stored += 1
             if not last:
                 h = h_try * min(5.0, max(0.2, 0.9 * max(error, 1e-10) ** -0.2))
         if status != OK:
             break
-    summary[S_FORCE_MAX] = force_max
-    summary[S_IMPACTS] = impacts
-    summary[S_PENETRATION_MAX] = penetration_max
-    summary[S_IMPACT_VELOCITY_MAX] = impact_velocity_max
-    summary[S_DISPLACEMENT_MAX_1] = displacement_max_1
-    summary[S_DISPLACEMENT_MAX_2] = displacement_max_2
     summary[S_STATUS] = status
     summary[S_TIME] = t
     summary[S_STEPS] = steps
-    summary[S_RELATIVE_MAX] = relative_max
     return stored
 
 
 @njit(cache=True, nogil=True)
-def integrate_batch(records, time_step, y0, floors, below, contact, floor_1, floor_2, rtol, atol, displacement_limit, summaries):
+def integrate_batch(records, time_step, y0, floors, below, contacts, contact_floors, rtol, atol, displacement_limit, summaries):
     """``integrate_record`` for every row of ``records``, no histories kept.
     Stops at the first failed record (its status says why)."""
     no_time = np.empty(0)
     no_state = np.empty((0, y0.size))
+    no_force = np.empty((0, contacts.shape[0]))
     for r in range(records.shape[0]):
-        integrate_record(
-            records[r], time_step, y0, floors, below, contact, floor_1, floor_2, rtol, atol,
-            displacement_limit, summaries[r], no_time, no_state, no_time,
-        )
+        integrate_record(records[r], time_step, y0, floors, below, contacts, contact_floors, rtol, atol,
+                         displacement_limit, summaries[r], no_time, no_state, no_force)
         if summaries[r, S_STATUS] != OK:
             break
 

@@ -148,7 +148,7 @@ def gap_points(case: Case, gaps, plan: MonteCarloPlan | int | None = None, **opt
     gaps = [float(g) for g in np.asarray(gaps, dtype=float).ravel()]
     report, points = plan.progress, []
     for index, gap in enumerate(gaps):
-        at_gap = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=gap))
+        at_gap = case.with_contact(gap=gap)
         progress = None if report is None else _offset(report, index, len(gaps))
         points.append(MonteCarloPoint.from_result(simulate(at_gap, dataclasses.replace(plan, progress=progress))))
     return tuple(points)

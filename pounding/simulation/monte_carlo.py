@@ -35,13 +35,14 @@ from pounding.simulation.ground_motion import (
     suite_size,
 )
 from pounding.simulation.plan import MonteCarloPlan, as_plan
-from pounding.simulation.result import SimulationResult
+from pounding.simulation.result import ContactPeaks, SimulationResult
 from pounding.simulation.system import (
     Cancelled,
     Settings,
     check_records,
     check_study,
     failure,
+    floor_index,
     kernel_system,
 )
 
@@ -102,7 +103,7 @@ def simulate(case: Case, plan: MonteCarloPlan | None = None, **options) -> Simul
     system = kernel_system(case, settings)
     y0 = np.zeros(3 * system.n_floors)
     indices = np.arange(first_record, first_record + records)
-    summaries = np.zeros((records, kernel.SUMMARY_COLUMNS))
+    summaries = np.zeros((records, summary_columns(case)))
     chunks = [slice(start, min(start + settings.chunk_size, records)) for start in range(0, records, settings.chunk_size)]
 
     def run(chunk: slice) -> slice:
@@ -110,11 +111,8 @@ def simulate(case: Case, plan: MonteCarloPlan | None = None, **options) -> Simul
             return chunk
         rows = summaries[chunk]
         for batch, accelerations, time_step in ground_motion_batches(case, seed, indices[chunk]):
-            kernel.integrate_batch(
-                accelerations, time_step, y0, system.floors, system.below, system.contact,
-                system.floor_1, system.floor_2, settings.tolerance, system.atol, settings.displacement_limit,
-                rows[batch],
-            )
+            kernel.integrate_batch(accelerations, time_step, y0, system.floors, system.below, system.contacts,
+                                   system.contact_floors, settings.tolerance, system.atol, settings.displacement_limit, rows[batch])
         return chunk
 
     done = 0
@@ -136,19 +134,31 @@ def simulate(case: Case, plan: MonteCarloPlan | None = None, **options) -> Simul
             for future in futures:
                 future.cancel()
             raise
-    return SimulationResult(
-        case=case,
-        seed=seed,
-        indices=indices,
-        force_max=summaries[:, kernel.S_FORCE_MAX].copy(),
-        impacts=summaries[:, kernel.S_IMPACTS].astype(np.int64),
-        penetration_max=summaries[:, kernel.S_PENETRATION_MAX].copy(),
-        impact_velocity_max=summaries[:, kernel.S_IMPACT_VELOCITY_MAX].copy(),
-        displacement_max=summaries[:, [kernel.S_DISPLACEMENT_MAX_1, kernel.S_DISPLACEMENT_MAX_2]].copy(),
-        relative_displacement_max=summaries[:, kernel.S_RELATIVE_MAX].copy(),
-        steps=summaries[:, kernel.S_STEPS].astype(np.int64),
-        settings=settings,
+    peaks = contact_blocks(summaries, len(case.contacts))
+    contacts = tuple(
+        ContactPeaks(
+            contact=contact,
+            force_max=peaks[:, c, kernel.S_FORCE_MAX].copy(),
+            impacts=peaks[:, c, kernel.S_IMPACTS].astype(np.int64),
+            penetration_max=peaks[:, c, kernel.S_PENETRATION_MAX].copy(),
+            impact_velocity_max=peaks[:, c, kernel.S_IMPACT_VELOCITY_MAX].copy(),
+            displacement_max=peaks[:, c, [kernel.S_DISPLACEMENT_MAX_1, kernel.S_DISPLACEMENT_MAX_2]].copy(),
+            relative_displacement_max=peaks[:, c, kernel.S_RELATIVE_MAX].copy(),
+        )
+        for c, contact in enumerate(case.contacts)
     )
+    return SimulationResult(case=case, seed=seed, indices=indices, contacts=contacts,
+                            steps=summaries[:, kernel.S_STEPS].astype(np.int64), settings=settings)
+
+
+def summary_columns(case: Case) -> int:
+    """Columns of the kernel's per-record summary: the record's, then a block per contact."""
+    return kernel.RECORD_COLUMNS + len(case.contacts) * kernel.CONTACT_COLUMNS
+
+
+def contact_blocks(summaries: np.ndarray, n_contacts: int) -> np.ndarray:
+    """The per-contact blocks of kernel summaries (one row, or one per record), indexed [..., contact, S_* column]."""
+    return summaries[..., kernel.RECORD_COLUMNS:].reshape(summaries.shape[:-1] + (n_contacts, kernel.CONTACT_COLUMNS))
 
 
 @dataclass(frozen=True)
@@ -230,7 +240,7 @@ def design_gap(case: Case, target_probability: float = defaults.TARGET_PROBABILI
     case = as_case(case)
     plan = as_plan(plan, options).with_records(suite_size(case) or defaults.DESIGN_GAP_RECORDS)
     records, seed, settings = plan.records, plan.seed, plan.settings
-    free = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=2.0 * settings.displacement_limit))
+    free = case.with_contact(gap=2.0 * settings.displacement_limit)  # one contact: each contact's is its pair's
     result = simulate(free, dataclasses.replace(plan, first_record=0))
     peaks = result.relative_displacement_max
     ordered = np.sort(peaks)
@@ -261,14 +271,15 @@ class TimeHistory:
         [m/s^2] at ``time``.
     displacement, velocity, hysteretic : ndarray, shape (steps, floors)
         Floor displacements [m] and velocities [m/s] relative to the ground,
-        storey hysteretic displacements z [m]; floors of building 1 then 2.
-    contact_force : ndarray
-        Pounding force [N].
+        storey hysteretic displacements z [m]; floors of building 1, then 2, ...
+    contact_forces, penetrations : ndarray, shape (steps, contacts)
+        Each contact's pounding force [N] and penetration delta = x_left - x_right - gap [m].
     drift, storey_force : ndarray, shape (steps, floors)
         Storey drifts [m] and restoring forces alpha k u + (1 - alpha) k z [N]
         (Eq. 36), the hysteresis loops.
-    penetration : ndarray
-        delta = x1 - x2 - gap at the contact floors [m].
+    summary : dict
+        The record's peaks over all contacts (the largest force, the impacts' count) and ``contacts``: each
+        contact's.
     """
 
     case: Case
@@ -277,16 +288,27 @@ class TimeHistory:
     displacement: np.ndarray
     velocity: np.ndarray
     hysteretic: np.ndarray
-    contact_force: np.ndarray
+    contact_forces: np.ndarray
     drift: np.ndarray
     storey_force: np.ndarray
-    penetration: np.ndarray
+    penetrations: np.ndarray
     summary: dict
 
     def floor(self, building: int, level: int) -> int:
-        """Column of floor ``level`` (from 1) of ``building`` (1 or 2)."""
-        offset = 0 if building == 1 else self.case.buildings[0].n_storeys
-        return offset + level - 1
+        """Column of floor ``level`` of ``building`` (both counted from 1)."""
+        return floor_index(self.case, building, level)
+
+    @property
+    def contact_force(self) -> np.ndarray:
+        """The one contact's pounding force [N] (several contacts: ``contact_forces``)."""
+        self.case.contact  # noqa: B018 -- CaseError naming ``contacts`` when the case has several
+        return self.contact_forces[:, 0]
+
+    @property
+    def penetration(self) -> np.ndarray:
+        """The one contact's penetration [m] (several contacts: ``penetrations``)."""
+        self.case.contact  # noqa: B018
+        return self.penetrations[:, 0]
 
 
 def integrate(
@@ -349,16 +371,15 @@ def _integrate(case: Case, record: np.ndarray, time_step: float, initial_state, 
     if y0.shape != (n_state,) or not np.all(np.isfinite(y0)):
         raise ArgumentError("initial_state", f"must be {n_state} finite numbers (d, v, z of every floor), got shape {y0.shape}")
     most = _check_history(field, record.size, n_state, error)
-    summary = np.zeros(kernel.SUMMARY_COLUMNS)
+    summary = np.zeros(summary_columns(case))
+    n_contacts = len(case.contacts)
     capacity = 8 * record.size if most is None else min(8 * record.size, most)
     while True:
         time = np.empty(capacity)
         state = np.empty((capacity, n_state))
-        force = np.empty(capacity)
-        stored = kernel.integrate_record(
-            record, time_step, y0, system.floors, system.below, system.contact, system.floor_1,
-            system.floor_2, settings.tolerance, system.atol, settings.displacement_limit, summary, time, state, force,
-        )
+        force = np.empty((capacity, n_contacts))
+        stored = kernel.integrate_record(record, time_step, y0, system.floors, system.below, system.contacts, system.contact_floors,
+                                         settings.tolerance, system.atol, settings.displacement_limit, summary, time, state, force)
         if summary[kernel.S_STATUS] != kernel.HISTORY_FULL:
             break
         if most is not None and capacity >= most:
@@ -381,19 +402,25 @@ def _integrate(case: Case, record: np.ndarray, time_step: float, initial_state, 
         displacement=displacement,
         velocity=velocity,
         hysteretic=hysteretic,
-        contact_force=force,
+        contact_forces=force,
         drift=drift,
         storey_force=alpha * k * drift + (1.0 - alpha) * k * hysteretic,
-        penetration=displacement[:, system.floor_1] - displacement[:, system.floor_2] - case.contact.gap,
-        summary={
-            "force_max": summary[kernel.S_FORCE_MAX],
-            "impacts": int(summary[kernel.S_IMPACTS]),
-            "penetration_max": summary[kernel.S_PENETRATION_MAX],
-            "impact_velocity_max": summary[kernel.S_IMPACT_VELOCITY_MAX],
-            "relative_displacement_max": summary[kernel.S_RELATIVE_MAX],
-            "steps": int(summary[kernel.S_STEPS]),
-        },
+        penetrations=(displacement[:, system.contact_floors[:, 0]] - displacement[:, system.contact_floors[:, 1]]
+                      - system.contacts[:, kernel.C_GAP]),
+        summary=_record_summary(case, summary),
     )
+
+
+def _record_summary(case: Case, summary: np.ndarray) -> dict:
+    """One record's peaks: over all contacts, as :class:`SimulationResult`'s, and each contact's (``contacts``)."""
+    peaks = contact_blocks(summary, len(case.contacts))
+    contacts = [{"force_max": float(p[kernel.S_FORCE_MAX]), "impacts": int(p[kernel.S_IMPACTS]),
+                 "penetration_max": float(p[kernel.S_PENETRATION_MAX]), "impact_velocity_max": float(p[kernel.S_IMPACT_VELOCITY_MAX]),
+                 "relative_displacement_max": float(p[kernel.S_RELATIVE_MAX])} for p in peaks]
+    whole = {key: max(c[key] for c in contacts) for key in ("force_max", "penetration_max", "impact_velocity_max")}
+    one = {"relative_displacement_max": contacts[0]["relative_displacement_max"]} if len(contacts) == 1 else {}
+    return {**whole, "impacts": sum(c["impacts"] for c in contacts), **one, "steps": int(summary[kernel.S_STEPS]),
+            "contacts": contacts}
 
 
 def simulate_record(case: Case, seed: int = defaults.SEED, index: int = 0, settings: Settings | None = None) -> TimeHistory:

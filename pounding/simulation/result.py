@@ -2,29 +2,41 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy.special import bdtr, ndtri, stdtrit  # binomial CDF, normal and t quantiles; scipy.stats is slow to import
 
 from pounding import defaults
 from pounding.case.case import Case
+from pounding.mechanics.contact import Contact
 from pounding.simulation.system import Settings
 
-__all__ = ["SimulationResult", "quantile_interval", "wilson_interval"]
+__all__ = ["ContactPeaks", "SimulationResult", "mean_interval", "quantile_interval", "wilson_interval"]
+
+
+def mean_interval(values: np.ndarray) -> tuple[float, float]:
+    """95 % confidence interval of the mean of per-record peaks (Student t) [same unit], cut at 0 below: a peak
+    force is never negative, so neither is its mean; (0, inf) from one record."""
+    if values.size < 2:
+        return (0.0, math.inf)
+    mean = float(np.mean(values))
+    half = stdtrit(values.size - 1, 0.975) * float(np.std(values, ddof=1)) / math.sqrt(values.size)
+    return (max(0.0, mean - half), mean + half)
 
 
 @dataclass(frozen=True)
-class SimulationResult:
-    """Per-record peaks of a Monte Carlo study, and their summary.
-
-    All arrays have one entry per record, in record order.
+class ContactPeaks:
+    """Per-record peaks at one contact of a Monte Carlo study, one entry per record.
 
     Attributes
     ----------
+    contact : Contact
     force_max : ndarray
-        Extreme pounding force max_t ``|F(t)|`` [N], Eq. 11 (0 without pounding).
+        Extreme pounding force max_t ``|F(t)|`` at this contact [N], Eq. 11 (0 without pounding).
     impacts : ndarray
         Number of impacts.
     penetration_max : ndarray
@@ -32,9 +44,55 @@ class SimulationResult:
     impact_velocity_max : ndarray
         Largest approach velocity at the onset of an impact [m/s].
     displacement_max : ndarray, shape (n_records, 2)
-        Peak ``|displacement|`` of the contact floor of building 1 and 2 [m].
+        Peak ``|displacement|`` of the contact's left and right floor [m].
     relative_displacement_max : ndarray
-        Peak of X = x1 - x2 at the contact floors over the accepted steps [m].
+        Peak of X = x_left - x_right at the contact's floors over the accepted steps [m].
+    """
+
+    contact: Contact
+    force_max: np.ndarray
+    impacts: np.ndarray
+    penetration_max: np.ndarray
+    impact_velocity_max: np.ndarray
+    displacement_max: np.ndarray
+    relative_displacement_max: np.ndarray
+
+    def to_dict(self) -> dict:
+        """JSON-ready, SI units: the summary and the per-record values."""
+        low, high = mean_interval(self.force_max)
+        return {
+            "between": list(self.contact.between),
+            "levels": list(self.contact.levels),
+            "force_max_mean": float(np.mean(self.force_max)),
+            "force_max_confidence_interval": [_finite_or_none(low), _finite_or_none(high)],
+            "pounding_fraction": float(np.mean(self.impacts > 0)),
+            "impacts_mean": float(np.mean(self.impacts)),
+            "force_max": self.force_max.tolist(),
+            "impacts": self.impacts.astype(int).tolist(),
+            "penetration_max": self.penetration_max.tolist(),
+            "relative_displacement_max": self.relative_displacement_max.tolist(),
+        }
+
+
+def _joined_arrays(kind, parts: list):
+    """Consecutive studies' dataclasses of ``kind``, their arrays joined in record order."""
+    arrays = {f.name: np.concatenate([getattr(p, f.name) for p in parts]) for f in dataclasses.fields(kind)
+              if isinstance(getattr(parts[0], f.name), np.ndarray)}
+    return dataclasses.replace(parts[0], **arrays)
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """Per-record peaks of a Monte Carlo study, and their summary.
+
+    All arrays have one entry per record, in record order. The force, impact
+    and penetration arrays are over all contacts (the largest force, the
+    impacts' count); ``contacts`` has each contact's.
+
+    Attributes
+    ----------
+    contacts : tuple of ContactPeaks
+        In the case's order.
     steps : ndarray
         Accepted integration steps.
     """
@@ -42,18 +100,57 @@ class SimulationResult:
     case: Case
     seed: int
     indices: np.ndarray
-    force_max: np.ndarray
-    impacts: np.ndarray
-    penetration_max: np.ndarray
-    impact_velocity_max: np.ndarray
-    displacement_max: np.ndarray
-    relative_displacement_max: np.ndarray
+    contacts: tuple[ContactPeaks, ...]
     steps: np.ndarray
     settings: Settings
 
+    @classmethod
+    def joined(cls, parts: list[SimulationResult]) -> SimulationResult:
+        """Consecutive studies of one case and seed as one."""
+        if len(parts) == 1:
+            return parts[0]
+        contacts = tuple(_joined_arrays(ContactPeaks, [p.contacts[c] for p in parts]) for c in range(len(parts[0].contacts)))
+        return dataclasses.replace(_joined_arrays(cls, parts), contacts=contacts)
+
+    @cached_property
+    def force_max(self) -> np.ndarray:
+        """Extreme pounding force over all contacts [N], Eq. 11 (0 without pounding)."""
+        return np.max([c.force_max for c in self.contacts], axis=0)
+
+    @cached_property
+    def impacts(self) -> np.ndarray:
+        """Number of impacts, all contacts together."""
+        return np.sum([c.impacts for c in self.contacts], axis=0)
+
+    @cached_property
+    def penetration_max(self) -> np.ndarray:
+        """Peak penetration over all contacts [m]."""
+        return np.max([c.penetration_max for c in self.contacts], axis=0)
+
+    @cached_property
+    def impact_velocity_max(self) -> np.ndarray:
+        """Largest approach velocity at the onset of an impact, over all contacts [m/s]."""
+        return np.max([c.impact_velocity_max for c in self.contacts], axis=0)
+
+    @property
+    def displacement_max(self) -> np.ndarray:
+        """Peak ``|displacement|`` of the one contact's floors, shape (n_records, 2) [m]
+        (a case of several contacts: each contact's, in ``contacts``)."""
+        return self._one_contact.displacement_max
+
+    @property
+    def relative_displacement_max(self) -> np.ndarray:
+        """Peak of X = x1 - x2 at the one contact's floors [m] (several contacts: each contact's, in ``contacts``)."""
+        return self._one_contact.relative_displacement_max
+
+    @property
+    def _one_contact(self) -> ContactPeaks:
+        self.case.contact  # noqa: B018 -- CaseError naming ``contacts`` when the case has several
+        return self.contacts[0]
+
     @property
     def n_records(self) -> int:
-        return self.force_max.size
+        return self.steps.size
 
     @property
     def force_max_mean(self) -> float:
@@ -70,12 +167,8 @@ class SimulationResult:
 
     @property
     def force_max_confidence_interval(self) -> tuple[float, float]:
-        """95 % confidence interval of the mean extreme force (Student t) [N], cut at 0 below: a force is never
-        negative, so neither is its mean (a few pounding records among many that do not widen it past 0)."""
-        if self.n_records < 2:
-            return (0.0, math.inf)
-        half = stdtrit(self.n_records - 1, 0.975) * self.force_max_std_error
-        return (max(0.0, self.force_max_mean - half), self.force_max_mean + half)
+        """95 % confidence interval of the mean extreme force (:func:`mean_interval`) [N]."""
+        return mean_interval(self.force_max)
 
     @property
     def pounding_fraction(self) -> float:
@@ -99,9 +192,11 @@ class SimulationResult:
 
     def to_dict(self) -> dict:
         """JSON-ready summary and per-record values, SI units; for recorded
-        motions, ``record_files`` names each record and ``seed`` is null."""
+        motions, ``record_files`` names each record and ``seed`` is null. The top-level force is the
+        largest over all contacts; ``contacts`` has each contact's, in the case's order."""
         low, high = self.force_max_confidence_interval
         recorded = {"record_files": [self.case.hazard.records[int(i)].name for i in self.indices]} if self.case.recorded else {}
+        one_contact = len(self.contacts) == 1
         return {
             "case": self.case.name,
             "seed": None if self.case.recorded else self.seed,
@@ -120,8 +215,9 @@ class SimulationResult:
             "impacts": self.impacts.astype(int).tolist(),
             "penetration_max": self.penetration_max.tolist(),
             "impact_velocity_max": self.impact_velocity_max.tolist(),
-            "displacement_max": self.displacement_max.tolist(),
-            "relative_displacement_max": self.relative_displacement_max.tolist(),
+            **({"displacement_max": self.displacement_max.tolist(),
+                "relative_displacement_max": self.relative_displacement_max.tolist()} if one_contact else {}),
+            "contacts": [c.to_dict() for c in self.contacts],
             "units": {"force": "N", "length": "m", "velocity": "m/s", "duration": "s"},
         }
 

@@ -21,7 +21,8 @@ from pounding.errors import (
 )
 from pounding.mechanics import integrator as kernel
 
-__all__ = ["Cancelled", "KernelSystem", "Settings", "check_records", "check_settings", "check_study", "failure", "kernel_system"]
+__all__ = ["Cancelled", "KernelSystem", "Settings", "check_records", "check_settings", "check_study", "failure", "floor_index",
+           "kernel_system"]
 
 _LAST_INDEX = 2**63 - 1  # record indices are int64
 
@@ -88,9 +89,8 @@ class KernelSystem:
 
     floors: np.ndarray
     below: np.ndarray
-    contact: np.ndarray
-    floor_1: int
-    floor_2: int
+    contacts: np.ndarray
+    contact_floors: np.ndarray
     atol: np.ndarray
 
     @property
@@ -132,21 +132,24 @@ def kernel_system(case: Case, settings: Settings) -> KernelSystem:
             bw = storey.bouc_wen
             rows.append([storey.mass, storey.stiffness, damping, bw.alpha, bw.A, bw.beta, bw.gamma, bw.n])
             below.append(offset + number - 1 if number > 0 else -1)
-    n1 = case.buildings[0].n_storeys
-    contact = case.contact
-    contact_vector = np.array(
-        [contact.model_code, contact.gap, contact.stiffness, contact.damping_ratio(), case.reduced_mass]
-    )
+    contacts = np.array([[c.model_code, c.gap, c.stiffness, c.damping_ratio(), case.reduced_mass_of(c)] for c in case.contacts])
+    contact_floors = np.array([[floor_index(case, b, level) for b, level in zip(c.between, c.levels)] for c in case.contacts],
+                              dtype=np.int64)
     n = len(rows)
     atol = np.concatenate([np.full(n, 1e-3), np.full(n, 1e-2), np.full(n, 1e-3)]) * settings.tolerance
     return KernelSystem(
         floors=np.array(rows, dtype=float),
         below=np.array(below, dtype=np.int64),
-        contact=contact_vector,
-        floor_1=contact.levels[0] - 1,
-        floor_2=n1 + contact.levels[1] - 1,
+        contacts=contacts,
+        contact_floors=contact_floors,
         atol=atol,
     )
+
+
+def floor_index(case: Case, building: int, level: int) -> int:
+    """Index in the kernel's state of floor ``level`` of ``building`` (both counted from 1): the floors of
+    building 1, then 2, and so on."""
+    return sum(b.n_storeys for b in case.buildings[: building - 1]) + level - 1
 
 
 def failure(summary: np.ndarray, label: str, settings: Settings) -> SimulationError:

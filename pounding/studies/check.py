@@ -41,9 +41,10 @@ from pounding.errors import ArgumentError, described
 from pounding.simulation.ground_motion import suite_size
 from pounding.simulation.monte_carlo import design_gap, gap_from_peaks, simulate
 from pounding.simulation.plan import MonteCarloPlan, as_plan
-from pounding.simulation.result import SimulationResult
+from pounding.simulation.result import SimulationResult, mean_interval, quantile_interval
 
-__all__ = ["EstimateCheck", "check_estimate", "check_gap_for_capacity", "unpounded_bound"]
+__all__ = ["EstimateCheck", "RowCheck", "agrees", "check_row", "check_estimate", "check_gap_for_capacity", "contact_check", "monte_carlo_of",
+           "unpounded_bound"]
 
 _SMALLEST_CHUNK = 25
 """Fewest records of a chunk after the first, where the interval asks for only a few more."""
@@ -239,27 +240,127 @@ def check_estimate(estimate: Estimate, plan: MonteCarloPlan | int | None = None,
     plan = as_plan(plan, options)
     case = estimate.case
     counted = _Progress(plan.progress)
-    if plan.records is not None or suite_size(case):
-        result = simulate(case, dataclasses.replace(plan, first_record=0, progress=counted.at(0)))
-    else:
-        result = _adaptive(case, plan, counted)
-    target = estimate.target_probability
-    # a record that never touched moved freely throughout; one that touched has its free peak beyond the case's gap
-    gap = gap_from_peaks(np.where(result.impacts == 0, result.relative_displacement_max, np.inf), target)
-    if not math.isfinite(gap):
+    result = monte_carlo_of(case, plan, counted)
+
+    def free_peaks() -> np.ndarray:
         counted.planned = 2 * result.n_records
-        free = design_gap(case, target, dataclasses.replace(plan, records=result.n_records, progress=counted.at(result.n_records)))
-        gap = free.gap
+        return design_gap(case, estimate.target_probability,
+                          dataclasses.replace(plan, records=result.n_records, progress=counted.at(result.n_records))).peaks
+
+    check = contact_check(estimate, result, result, free_peaks)
     counted.finish()
-    return EstimateCheck(
-        records=result.n_records,
-        seed=None if case.recorded else result.seed,
-        force_max_mean=result.force_max_mean,
+    return check
+
+
+@dataclass(frozen=True)
+class RowCheck:
+    """A case of several contacts against one Monte Carlo study of the whole case (:func:`check_row`): every contact
+    acts in the same time histories.
+
+    Attributes
+    ----------
+    records, seed, force_max_mean, force_max_confidence_interval, force_max_quantiles, pounding_fraction, agrees
+        As :class:`EstimateCheck`'s, for the largest force over all contacts and a pounding at any contact.
+    closed_form_force : float
+        The closed form's E[F_max] of the largest force over all contacts [N].
+    contacts : tuple of EstimateCheck
+        Each contact's check, in the case's order.
+    """
+
+    records: int
+    seed: int | None
+    force_max_mean: float
+    force_max_confidence_interval: tuple[float, float]
+    force_max_quantiles: dict
+    pounding_fraction: float
+    agrees: bool
+    closed_form_force: float
+    contacts: tuple[EstimateCheck, ...]
+
+    @property
+    def force_answer(self) -> float:
+        """The E[F_max] over all contacts the tool stands behind [N]: the closed form's where it agrees."""
+        return self.closed_form_force if self.agrees else self.force_max_mean
+
+    @property
+    def answer_source(self) -> str:
+        """Where :attr:`force_answer` comes from: "closed form" or "monte carlo"."""
+        return "closed form" if self.agrees else "monte carlo"
+
+    def to_dict(self) -> dict:
+        """JSON-ready, SI units: the study, the verdict over all contacts, and each contact's (``contacts``)."""
+        low, high = self.force_max_confidence_interval
+        return {
+            "records": self.records, "seed": self.seed, "force_max_mean": self.force_max_mean,
+            "force_max_confidence_interval": [_finite_or_none(low), _finite_or_none(high)],
+            "force_max_quantiles": dict(self.force_max_quantiles), "pounding_fraction": self.pounding_fraction,
+            "agrees": self.agrees, "force_answer": self.force_answer, "answer_source": self.answer_source,
+            "contacts": [{**c.to_dict(), **c.answers()} for c in self.contacts], "units": {"force": "N", "length": "m"},
+        }
+
+
+def check_row(estimate, plan: MonteCarloPlan | None = None, **options) -> RowCheck:
+    """Check the closed form of a case of several contacts (a :class:`~pounding.closed_form.row.RowEstimate`) against
+    one Monte Carlo study of the whole case: the largest force over all contacts, and each contact's force and gap
+    as :func:`check_estimate` checks them. ``plan`` and ``**options`` as :func:`check_estimate`'s."""
+    plan = as_plan(plan, options)
+    case = estimate.case
+    counted = _Progress(plan.progress)
+    result = monte_carlo_of(case, plan, counted)
+    free = []
+
+    def free_peaks(index: int):
+        def peaks() -> np.ndarray:
+            if not free:  # every contact's free peaks from one run of the records without contact
+                counted.planned = 2 * result.n_records
+                apart = dataclasses.replace(case, contacts=tuple(
+                    dataclasses.replace(c, gap=2.0 * plan.settings.displacement_limit) for c in case.contacts))
+                free.append(simulate(apart, dataclasses.replace(plan, records=result.n_records, first_record=0,
+                                                                progress=counted.at(result.n_records))))
+            return free[0].contacts[index].relative_displacement_max
+        return peaks
+
+    contacts = tuple(contact_check(e, result.contacts[i], result, free_peaks(i)) for i, e in enumerate(estimate.contacts))
+    counted.finish()
+    return RowCheck(
+        records=result.n_records, seed=None if case.recorded else result.seed, force_max_mean=result.force_max_mean,
         force_max_confidence_interval=tuple(float(v) for v in result.force_max_confidence_interval),
         force_max_quantiles={key: result.force_max_quantile(float(key))[0] for key in defaults.FORCE_QUANTILES},
-        pounding_fraction=result.pounding_fraction,
+        pounding_fraction=result.pounding_fraction, agrees=agrees(estimate, result.force_max),
+        closed_form_force=estimate.force_expected, contacts=contacts,
+    )
+
+
+def monte_carlo_of(case, plan: MonteCarloPlan, counted: _Progress) -> SimulationResult:
+    """The check's study of ``case``: the plan's records, a recorded suite's each once, or as many as the precision
+    asks (the module's docstring), from record 0."""
+    if plan.records is not None or suite_size(case):
+        return simulate(case, dataclasses.replace(plan, first_record=0, progress=counted.at(0)))
+    return _adaptive(case, plan, counted)
+
+
+def contact_check(estimate: Estimate, peaks, result: SimulationResult, free_peaks: Callable[[], np.ndarray]) -> EstimateCheck:
+    """The check of one contact's ``estimate`` against its per-record ``peaks`` (``force_max``, ``impacts``,
+    ``relative_displacement_max``: a :class:`SimulationResult` of one contact, or a
+    :class:`~pounding.simulation.result.ContactPeaks`) in the study ``result``; ``free_peaks()`` gives the same
+    records' free peaks at the contact, run without contact, where the records' gap needs them."""
+    target = estimate.target_probability
+    # a record that never touched moved freely throughout; one that touched only here has its free peak beyond the
+    # gap; where another contact's impacts moved a record, its free peak here is unknown: the records run again apart
+    elsewhere = np.any(result.impacts > peaks.impacts)
+    gap = gap_from_peaks(np.where(result.impacts == 0, peaks.relative_displacement_max, np.inf), target)
+    if elsewhere or not math.isfinite(gap):
+        gap = gap_from_peaks(free_peaks(), target)
+    force_max = peaks.force_max
+    return EstimateCheck(
+        records=result.n_records,
+        seed=None if result.case.recorded else result.seed,
+        force_max_mean=float(np.mean(force_max)),
+        force_max_confidence_interval=tuple(float(v) for v in mean_interval(force_max)),
+        force_max_quantiles={key: quantile_interval(force_max, float(key))[0] for key in defaults.FORCE_QUANTILES},
+        pounding_fraction=float(np.mean(peaks.impacts > 0)),
         required_gap=gap,
-        agrees=_agrees(estimate, result),
+        agrees=agrees(estimate, force_max),
         closed_form_force=estimate.force_expected,
         closed_form_gap=estimate.required_gap,
         closed_form_pounding_probability=estimate.pounding_probability,
@@ -269,12 +370,14 @@ def check_estimate(estimate: Estimate, plan: MonteCarloPlan | int | None = None,
     )
 
 
-def _agrees(estimate: Estimate, result: SimulationResult) -> bool:
-    """Whether the closed form's E[F_max] agrees with the records (the module's docstring)."""
-    mean, force = result.force_max_mean, estimate.force_expected
+def agrees(estimate, force_max: np.ndarray) -> bool:
+    """Whether the closed form's E[F_max] and probability of pounding (an :class:`Estimate`'s, or a
+    :class:`~pounding.closed_form.row.RowEstimate`'s) agree with the records' per-record F_max [N] (the module's
+    docstring)."""
+    mean, force = float(np.mean(force_max)), estimate.force_expected
     if mean == 0.0:
-        return estimate.pounding_probability <= unpounded_bound(result.n_records)
-    low, high = result.force_max_confidence_interval
+        return estimate.pounding_probability <= unpounded_bound(force_max.size)
+    low, high = mean_interval(force_max)
     return bool(low <= force <= high and math.isfinite(high - low)) or abs(force / mean - 1.0) <= defaults.CHECK_TOLERANCE
 
 
@@ -310,7 +413,7 @@ def _adaptive(case, plan: MonteCarloPlan, counted: _Progress) -> SimulationResul
         done = sum(part.n_records for part in parts)
         counted.planned = max(counted.planned, done + size)
         parts.append(simulate(case, dataclasses.replace(plan, records=size, first_record=done, progress=counted.at(done))))
-        result = _joined(parts)
+        result = SimulationResult.joined(parts)
         size = _next_chunk(result)
     return result
 
@@ -331,15 +434,6 @@ def _next_chunk(result: SimulationResult) -> int:
     return min(room, max(wanted - records, _SMALLEST_CHUNK))
 
 
-def _joined(parts: list[SimulationResult]) -> SimulationResult:
-    """Consecutive studies of one case and seed as one."""
-    if len(parts) == 1:
-        return parts[0]
-    arrays = {f.name: np.concatenate([getattr(p, f.name) for p in parts]) for f in dataclasses.fields(SimulationResult)
-              if isinstance(getattr(parts[0], f.name), np.ndarray)}
-    return dataclasses.replace(parts[0], **arrays)
-
-
 def check_gap_for_capacity(estimate: Estimate, capacity: float, check: EstimateCheck) -> dict:
     """The Monte Carlo at the closed form's gap for a ``capacity`` [N] (:meth:`Estimate.gap_for_capacity`), on the
     records of ``check`` (its count and seed; a recorded suite's own records, each once): the gap [m], the records,
@@ -347,7 +441,7 @@ def check_gap_for_capacity(estimate: Estimate, capacity: float, check: EstimateC
     reaches down to the target 1 - ``estimate.target_probability``."""
     gap = estimate.gap_for_capacity(capacity)
     case = estimate.case
-    at_gap = dataclasses.replace(case, contact=dataclasses.replace(case.contact, gap=gap))
+    at_gap = case.with_contact(gap=gap)
     study = simulate(at_gap) if case.recorded else simulate(at_gap, records=check.records, seed=check.seed)
     exceedance = study.exceedance(capacity)
     holds = exceedance["probability_exceeding_interval"][0] <= 1.0 - estimate.target_probability

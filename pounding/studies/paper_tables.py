@@ -154,7 +154,7 @@ def varied_case(case: Case, *, g0: float = 1.0, gap: float | None = None, restit
         if elastic:
             storeys = tuple(dataclasses.replace(s, bouc_wen=BoucWen(alpha=1.0)) for s in storeys)
         buildings.append(dataclasses.replace(building, storeys=storeys))
-    return dataclasses.replace(case, excitation=excitation, contact=contact, buildings=tuple(buildings), name=name or case.name)
+    return dataclasses.replace(case, excitation=excitation, contacts=(contact,), buildings=tuple(buildings), name=name or case.name)
 
 
 def mdof_case() -> Case:

@@ -85,5 +85,5 @@ def engineer_storey_cases() -> list[Case]:
             for level in GAP_LEVELS:
                 contact = dataclasses.replace(base.contact, gap=level * sigma_x)
                 name = f"{hazard}, {label}, gap {level:g} sigma_X"
-                cases.append(dataclasses.replace(base, buildings=buildings, contact=contact, name=name))
+                cases.append(dataclasses.replace(base, buildings=buildings, contacts=(contact,), name=name))
     return cases

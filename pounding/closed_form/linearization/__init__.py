@@ -36,6 +36,7 @@ from pounding.closed_form.linearization.iteration import (
     DEFAULT_TOLERANCE,
     linearize,
     linearize_pair,
+    linearize_row,
 )
 from pounding.closed_form.linearization.linear_system import (
     LinearizedBuilding,
@@ -61,6 +62,7 @@ __all__ = [
     "ground_filter",
     "linearize",
     "linearize_pair",
+    "linearize_row",
     "lyapunov_covariance",
     "pair_state_space",
     "state_space",

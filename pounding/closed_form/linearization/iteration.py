@@ -281,11 +281,18 @@ def check_frequencies(case) -> None:
 
 
 def linearize_pair(case, **options) -> tuple[LinearizedBuilding, LinearizedBuilding]:
-    """Linearize both buildings of a case under its stationary spectrum.
+    """Linearize both buildings of a two-building case under its stationary spectrum (:func:`linearize_row`)."""
+    first, second = linearize_row(case, **options)
+    return first, second
+
+
+def linearize_row(case, **options) -> tuple[LinearizedBuilding, ...]:
+    """Linearize every building of a case under its stationary spectrum.
 
     The buildings do not interact in the linearization (no contact), so each
-    is linearized alone. For a non-stationary case the envelope is ignored:
-    the paper linearizes under the stationary (unmodulated) excitation.
+    is linearized alone, once, whatever contacts it has. For a non-stationary
+    case the envelope is ignored: the paper linearizes under the stationary
+    (unmodulated) excitation.
 
     Parameters
     ----------
@@ -295,8 +302,5 @@ def linearize_pair(case, **options) -> tuple[LinearizedBuilding, LinearizedBuild
     """
     check_frequencies(case)
     spectrum = case.excitation.spectrum
-    first, second = (
-        linearize(building, spectrum, label=f"building {number}", **options)
-        for number, building in enumerate(case.buildings, start=1)
-    )
-    return first, second
+    return tuple(linearize(building, spectrum, label=f"building {number}", **options)
+                 for number, building in enumerate(case.buildings, start=1))
