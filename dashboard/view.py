@@ -298,7 +298,8 @@ class PoundingDashboard(pn.viewable.Viewer):
         m = self.model
         if m.snapshot is None:
             return None
-        snapshot = replace(m.snapshot, monte_carlo=m.monte_carlo_points(), design_gap=m.current_design_gap())
+        capacity = display(m.units).to_si(m.capacity, force=1)  # the page's capacity, as the headline reads it
+        snapshot = replace(m.snapshot, monte_carlo=m.monte_carlo_points(), design_gap=m.current_design_gap(), capacity=capacity)
         check = m.current_check()  # the page's own check of this very estimate: the report takes it, not a second run
         if check is not None and snapshot.estimate is m.result:
             snapshot = replace(snapshot, check=check)

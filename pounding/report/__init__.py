@@ -49,7 +49,7 @@ from pounding.report.snapshot import (
     gap_points,
 )
 from pounding.report.static import REPORT_NOTE, report_html, write_report
-from pounding.report.summary import MonteCarloCheck, monte_carlo_check, verdict_html, with_check
+from pounding.report.summary import MonteCarloCheck, monte_carlo_check, verdict_html, with_capacity_check, with_check
 
 __all__ = [
     "CaseChange",
@@ -82,6 +82,7 @@ __all__ = [
     "report_html",
     "result_html",
     "verdict_html",
+    "with_capacity_check",
     "with_check",
     "write_report",
 ]
