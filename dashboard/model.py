@@ -102,6 +102,7 @@ class PoundingModel(CaseInputs, Studies, Pinning):
         self._compute_off_loop = submit or (lambda fn: fn())
         self._latest = Latest(self._compute_off_loop, self._schedule)
         self._make_jobs(check)
+        self._watch_studies()
         self._syncing = False
         self._extra: dict = {}
         self._description = ""

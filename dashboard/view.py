@@ -30,7 +30,7 @@ from dashboard.upload_widget import FileUpload
 from dashboard.uploads import MAX_CASE_BYTES, MAX_RECORD_BYTES, MAX_RECORD_FILES, new_folder, remove, size_text
 from dashboard.visibility import visible
 from pounding.display_units import display
-from pounding.report import Figures, case_provenance, write_report
+from pounding.report import Figures, StateMonteCarlo, case_provenance, write_report
 
 __all__ = ["PoundingDashboard"]
 
@@ -262,7 +262,8 @@ class PoundingDashboard(pn.viewable.Viewer):
         check, check_error = m.current_check(), m.check_error()
         return headline_html(result, units, capacity_si, m.monte_carlo_for_current_gap(), m.current_design_gap(), m.case_name(),
                              check=check, checking=m.checks and check is None and not check_error, check_error=check_error,
-                             held=held, pinned=pinned_html(pinned, result, units))
+                             held=held, pinned=pinned_html(pinned, result, units,
+                                                           StateMonteCarlo.of(result, check, m.monte_carlo_for_current_gap())))
 
     def _request_redraw(self, *_events) -> None:
         if not self._redraw_pending:
@@ -298,7 +299,8 @@ class PoundingDashboard(pn.viewable.Viewer):
         m = self.model
         if m.snapshot is None:
             return None
-        snapshot = replace(m.snapshot, monte_carlo=m.monte_carlo_points(), design_gap=m.current_design_gap())
+        capacity = display(m.units).to_si(m.capacity, force=1)  # the page's capacity, as the headline reads it
+        snapshot = replace(m.snapshot, monte_carlo=m.monte_carlo_points(), design_gap=m.current_design_gap(), capacity=capacity)
         check = m.current_check()  # the page's own check of this very estimate: the report takes it, not a second run
         if check is not None and snapshot.estimate is m.result:
             snapshot = replace(snapshot, check=check)

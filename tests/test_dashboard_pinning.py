@@ -123,3 +123,101 @@ def test_the_gap_plot_and_the_distribution_draw_the_pinned_state():
     assert list(line.data_source.data["x"][1:]) == pytest.approx(distribution.forces / 1e3)
     assert list(line.data_source.data["y"][1:]) == pytest.approx(distribution.cdf)
     assert plot.x_range.end == pytest.approx(1.05 * distribution.quantile(0.999) / 1e3)
+
+
+# --- the Monte Carlo kept with the pinned state -------------------------------------------------------------
+
+
+def _wait_until(done, timeout=180.0):
+    import time
+
+    deadline = time.monotonic() + timeout
+    while not done() and time.monotonic() < deadline:
+        time.sleep(0.02)
+    assert done(), "timed out"
+
+
+@pytest.fixture
+def small_checks(monkeypatch):
+    """The page's automatic check on 12 records (the library's check_estimate, fewer records): quick, the same rule."""
+    from dataclasses import replace
+
+    import dashboard.studies as studies
+    from dashboard.jobs import check_pool
+    from pounding.studies.check import check_estimate
+
+    check_pool().submit(lambda: None).result(timeout=120)  # no check of another test's model left running
+    monkeypatch.setattr(studies, "check_estimate", lambda result, plan: check_estimate(result, replace(plan, records=12)))
+    yield
+    check_pool().submit(lambda: None).result(timeout=120)
+
+
+def test_the_pinned_state_keeps_its_check_and_the_headline_compares_both_monte_carlo_means(small_checks):
+    from pounding.report import StateMonteCarlo
+    from pounding.studies.check import check_estimate
+
+    model = PoundingModel(check=True)
+    _wait_until(lambda: model.current_check() is not None)
+    pinned_check = model.current_check()
+    assert model.pin() and model.pinned.snapshot.check is pinned_check
+    model.gap = 30.0  # mm: the page's check is cleared, then made anew for 30 mm; the pinned one stays
+    assert model.pinned.snapshot.check is pinned_check
+    _wait_until(lambda: model.current_check() is not None)
+    current_check = model.current_check()
+    assert model.pinned.snapshot.check is pinned_check and current_check is not pinned_check
+
+    # the numbers are the library's checks of each state, on the page's seed
+    assert pinned_check.force_max_mean == check_estimate(estimate(_at_gap(0.010)), records=12, seed=1).force_max_mean
+    assert current_check.force_max_mean == check_estimate(estimate(_at_gap(0.030)), records=12, seed=1).force_max_mean
+    text = headline_html(model.result, "SI", pinned=pinned_html(model.pinned, model.result, "SI",
+                                                                StateMonteCarlo.of(model.result, current_check)))
+    change = current_check.force_max_mean - pinned_check.force_max_mean
+    shown = display("SI")
+    assert _cells(text, "pin-monte-carlo") == [
+        shown.force(pinned_check.force_max_mean), shown.force(current_check.force_max_mean),
+        f"{shown.force(change)} ({100 * (change / pinned_check.force_max_mean):+.3g} %)"]
+    assert change < 0 and _cells(text, "pin-monte-carlo")[2].endswith(" %)") and " kN (" in _cells(text, "pin-monte-carlo")[2]
+    verdicts = _cells(text, "pin-verdict")
+    for verdict, check in zip(verdicts[:2], (pinned_check, current_check)):
+        assert verdict.startswith("agrees (" if check.agrees else "does not agree (") and f"of {check.records} records)" in verdict
+    assert "Change: current minus pinned." in text
+
+
+def test_a_check_that_ends_after_the_pin_joins_the_pinned_state(small_checks, monkeypatch):
+    import dashboard.studies as studies
+
+    monkeypatch.setattr(studies, "CHECK_DELAY", 1.0)  # s: the pin below comes first, however loaded the machine
+    model = PoundingModel(check=True)
+    assert model.current_check() is None and model.pin()  # pinned before its check has ended
+    assert model.pinned.snapshot.check is None
+    _wait_until(lambda: model.pinned.snapshot.check is not None)
+    assert model.pinned.snapshot.check is model.current_check()
+    assert model.pinned.estimate is model.result
+
+
+def test_without_a_monte_carlo_the_comparison_is_the_closed_form_alone():
+    model = PoundingModel()
+    model.pin()
+    model.gap = 20.0
+    text = pinned_html(model.pinned, model.result, "SI")
+    assert "pin-monte-carlo" not in text and "(closed form)." in text
+
+
+def test_a_study_at_the_gap_counts_where_no_check_was_run_and_a_state_without_says_so():
+    """The page's own Monte Carlo study (no automatic check) is kept with the pin; the current state has none: its
+    cells say so and the change is n/a."""
+    from pounding.report import StateMonteCarlo
+
+    model = PoundingModel(records=10)
+    model.run_monte_carlo()
+    _wait_until(lambda: not model.monte_carlo_job.running and model.monte_carlo_for_current_gap() is not None)
+    study = model.monte_carlo_for_current_gap()
+    model.pin()
+    model.gap = 20.0
+    assert model.monte_carlo_for_current_gap() is None and model.pinned.snapshot.monte_carlo == (study,)
+    text = pinned_html(model.pinned, model.result, "SI", StateMonteCarlo.of(model.result, None, None))
+    assert _cells(text, "pin-monte-carlo") == [display("SI").force(study.force_max_mean), "n/a", "n/a"]
+    pinned_verdict, current_verdict = _cells(text, "pin-verdict")[:2]
+    error = model.pinned.estimate.force_expected / study.force_max_mean - 1
+    assert pinned_verdict == f"not checked: {100 * abs(error):.0f} % {'under' if error < 0 else 'over'} the mean of 10 records"
+    assert current_verdict == "no Monte Carlo run"

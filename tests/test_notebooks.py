@@ -6,7 +6,8 @@ check cell runs in the same kernel: it changes the lesson's input as a student w
 output with what the library itself gives for that input.
 
 The lessons run with ``PANEL_INLINE=1``, as docs/notebook_pages.py runs them for the site; exported to HTML the
-same way, each opens in headless Chromium with the network cut and draws every plot.
+same way, each opens in headless Chromium with the network cut, draws every plot and asks the network for nothing
+(its equations as MathML, Panel's style sheets written in).
 """
 
 import ast
@@ -22,7 +23,7 @@ import nbformat
 import pytest
 from nbclient import NotebookClient
 
-from docs.notebook_pages import html_page
+from docs.notebook_pages import execute, html_page
 from tests.browser import LOAD_TIMEOUT, offline
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -225,16 +226,19 @@ def _opens_the_dashboard(cells):
 
 
 NBCONVERT_TEMPLATE = ("https://cdnjs.cloudflare.com/ajax/libs/require.js/", "https://cdnjs.cloudflare.com/ajax/libs/mathjax/")
-"""What nbconvert's page asks of the network whatever the notebook holds."""
+"""What plain nbconvert's page (the README's Jupyter-only export) asks of the network whatever the notebook holds;
+docs/notebook_pages.py's page does not."""
 PANEL_CDN = re.compile(r"https://cdn\.holoviz\.org/panel/[\d.]+/dist/(.*\.css(\?v=[\d.]+)?|bundled/reactiveesm/es-module-shims.*)$")
-"""What a page with HoloViews outputs still asks of Panel's CDN with PANEL_INLINE=1 (measured with panel 1.9.4,
-holoviews 1.23): HoloViews renders its plots without Panel's inlining of stylesheets, so they link Panel's layout
-and theme CSS, and ``hv.extension`` links an ES-module shim that only Panel's ReactiveESM components use. The plots
-draw without them (the tests below wait for every plot's pixels); BokehJS and Panel's JS come from the page."""
+"""What plain nbconvert's page with HoloViews outputs still asks of Panel's CDN with PANEL_INLINE=1 (measured with
+panel 1.9.4, holoviews 1.23): HoloViews renders its plots without Panel's inlining of stylesheets, so they link
+Panel's layout and theme CSS, and ``hv.extension`` links an ES-module shim. The plots draw without them;
+docs/notebook_pages.py writes the style sheets in and drops the shim's address (Panel's script has it already)."""
+NETWORK_TAG = re.compile(r"<(?:script|link|img|iframe)\b[^>]*\b(?:src|href)\s*=\s*[\"']?\s*(?:https?:)?//", re.I)
+"""A tag of the page that loads something from the network."""
 
 
 def _offline_leftovers(requests: list[str]) -> list[str]:
-    """The blocked requests that are neither nbconvert's template nor :data:`PANEL_CDN`'s."""
+    """The blocked requests that are neither plain nbconvert's template nor :data:`PANEL_CDN`'s."""
     blocked = [r.removeprefix("blocked request: ") for r in requests]
     return [url for url in blocked if not url.startswith(NBCONVERT_TEMPLATE) and not PANEL_CDN.match(url)]
 
@@ -278,7 +282,7 @@ def test_notebook_renders_offline(browser, path, tmp_path):
     assert len(painted) == len(code)
     assert all(p >= n for p, n in zip(painted, plots)), (painted, plots)
     assert not errors
-    assert _offline_leftovers(requests) == []
+    assert requests == []  # not even MathJax or Panel's style sheets: the page asks the network for nothing
 
 
 EXPORT_COMMAND = re.compile(r"^PANEL_INLINE=1 jupyter nbconvert .*$", re.M)
@@ -309,3 +313,56 @@ def test_the_readme_export_command_draws_the_plots_offline(browser, tmp_path):
     finally:
         context.close()
     assert _offline_leftovers(requests) == []
+
+
+SMALL_LESSON = [
+    nbformat.v4.new_markdown_cell("A line $x_1 - x_2 = \\sigma_X\\sqrt{2}$ and a block:\n\n$$F = \\bar\\beta\\,\\delta^{3/2}$$"),
+    nbformat.v4.new_code_cell("import holoviews as hv\nimport panel as pn\npn.extension()\nhv.extension('bokeh')"),
+    nbformat.v4.new_code_cell("hv.Curve([(0, 0), (1, 2), (2, 1)], 'gap [mm]', 'force [kN]')"),
+]
+"""A lesson in little: an equation in a line and one on its own, and a HoloViews plot through Panel."""
+
+
+@pytest.fixture(scope="module")
+def small_page(tmp_path_factory):
+    """:data:`SMALL_LESSON` executed and exported as docs/notebook_pages.py does for the site and the README."""
+    path = tmp_path_factory.mktemp("lesson") / "small.ipynb"
+    nbformat.write(nbformat.v4.new_notebook(cells=SMALL_LESSON), path)
+    return html_page(execute(path, timeout=120))
+
+
+@pytest.mark.slow
+def test_the_exported_page_names_nothing_on_the_network(small_page):
+    """No ``<script src>``, ``<link href>`` (nor image or frame) of the page is on the network, and neither are the
+    style sheets its plots load at run time; the equations are MathML, drawn without MathJax."""
+    assert NETWORK_TAG.findall(small_page) == []
+    assert "libs/mathjax/" not in small_page and "text/x-mathjax-config" not in small_page and "require.min.js" not in small_page
+    assert not re.search(r"https://cdn\.holoviz\.org/panel/[\d.]+/dist/[^\"]*\.(css|js)", small_page)
+    assert '"name":"InlineStyleSheet"' in small_page and '"name":"ImportedStyleSheet"' not in small_page
+    assert len(re.findall(r'<math display="inline"', small_page)) == 1 and len(re.findall(r'<math display="block"', small_page)) == 1
+    assert "<msqrt>" in small_page and "\\sqrt" not in small_page  # written as MathML, not left as TeX
+
+
+def test_tex_that_cannot_be_read_stays_as_written():
+    from docs.notebook_pages import mathml
+
+    assert mathml(r"\frac{1}{2}").startswith("<math")
+    assert mathml("x^^") == "$x^^$" and mathml("x^^", "block") == "$$x^^$$"  # never a failed page
+
+
+@pytest.mark.browser
+def test_the_exported_page_draws_offline_with_no_request(browser, small_page, tmp_path):
+    file = tmp_path / "small.html"
+    file.write_text(small_page, encoding="utf-8")
+    context = browser.new_context(viewport={"width": 1200, "height": 900})
+    tab = context.new_page()
+    requests: list[str] = []
+    offline(tab, requests)
+    try:
+        tab.goto(file.as_uri())
+        tab.wait_for_function(f"(({PAINTED_BY_CELL_JS})()).reduce((a, b) => a + b, 0) >= 1", timeout=LOAD_TIMEOUT)
+        widths = tab.evaluate("() => [...document.querySelectorAll('math')].map((m) => m.getBoundingClientRect().width)")
+    finally:
+        context.close()
+    assert requests == []
+    assert len(widths) == 2 and all(w > 20 for w in widths)  # the browser lays out the MathML

@@ -81,3 +81,32 @@ def test_one_chart_holds_both_force_against_gap_curves(states):
     assert list(lines["current"]["x"]) == pytest.approx(current.gap_curve.gaps / 1e-3)
     dashes = {item.label.value: item.renderers[0].glyph.line_dash for item in plot.legend[0].items}
     assert dashes["pinned"] == [6] and dashes["current"] == []  # the pinned state dashed
+
+
+def test_the_comparison_page_carries_each_states_monte_carlo_and_its_change(states, tmp_path):
+    """Each state's check (check_estimate) travels with its snapshot: the page gives both Monte Carlo means, their
+    change in the display units and in %, and whether each closed form agrees; a state without one says so."""
+    from pounding.report.comparison import NO_MONTE_CARLO
+    from pounding.studies.check import check_estimate
+
+    pinned, current = states
+    checks = [check_estimate(s.estimate, records=12, seed=1) for s in (pinned, current)]
+    both = [dataclasses.replace(s, check=c) for s, c in zip(states, checks)]
+    for units in ("SI", "kgf-cm-s"):
+        text = write_comparison(tmp_path / f"pair-{units}.html", *both, units=units).read_text()
+        shown = display(units)
+        row = re.search(r'<tr class="monte-carlo">(.*?)</tr>', text).group(1)
+        change = checks[1].force_max_mean - checks[0].force_max_mean
+        assert re.findall(r"<td[^>]*>([^<]*)</td>", row) == [
+            shown.force(checks[0].force_max_mean), shown.force(checks[1].force_max_mean),
+            f"{'+' if change > 0 else ''}{shown.force(change)} ({100 * change / checks[0].force_max_mean:+.3g} %)"]
+        assert f" {shown.force_unit} (" in re.findall(r"<td[^>]*>([^<]*)</td>", row)[2]
+        verdicts = re.findall(r"<td[^>]*>([^<]*)</td>", re.search(r'<tr class="monte-carlo-verdict">(.*?)</tr>', text).group(1))
+        for verdict, check in zip(verdicts, checks):
+            assert verdict.startswith("agrees" if check.agrees else "does not agree") and "of 12 records" in verdict
+    one = write_comparison(tmp_path / "one.html", pinned, both[1]).read_text()
+    row = re.findall(r"<td[^>]*>([^<]*)</td>", re.search(r'<tr class="monte-carlo">(.*?)</tr>', one).group(1))
+    assert row == ["n/a", display("SI").force(checks[1].force_max_mean), "n/a"]
+    assert f'<td class="pinned">{NO_MONTE_CARLO}</td>' in one
+    none = write_comparison(tmp_path / "none.html", pinned, current).read_text()
+    assert 'class="monte-carlo"' not in none  # closed forms alone: no empty rows

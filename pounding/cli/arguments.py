@@ -12,7 +12,7 @@ import math
 
 from pounding import defaults
 
-__all__ = ["add_units", "bounded_number", "increasing_values", "probability", "record_count", "study_size", "tolerance",
+__all__ = ["add_capacity", "add_units", "bounded_number", "capacity_newtons", "increasing_values", "probability", "record_count", "study_size", "tolerance",
            "whole_number_type"]
 
 
@@ -75,6 +75,23 @@ capacity = bounded_number(0.0, 1e15, open_low=True)
 """An argparse type: a capacity [N] > 0 (``--capacity``)."""
 tolerance = bounded_number(1e-12, 1e-2)
 """An argparse type: the integrator's relative tolerance, as ``Settings.tolerance`` allows."""
+
+
+def add_capacity(parser: argparse.ArgumentParser, what: str, required: bool = False) -> None:
+    """``--capacity F``: a force the contact can take, in N (kgf with ``--units kgf-cm-s``), > 0; ``what`` says
+    what it adds to the command's output ("also the probability that F_max exceeds it"). Read it in N with
+    :func:`capacity_newtons`."""
+    parser.add_argument("--capacity", type=capacity, metavar="F", default=None, required=required,
+                        help=f"a capacity F (N; kgf with --units kgf-cm-s){': ' + what if what else ''}")
+
+
+def capacity_newtons(args) -> float | None:
+    """``--capacity`` in N: given in N, or in kgf with ``--units kgf-cm-s`` (converted here, once); None when not given."""
+    if args.capacity is None:
+        return None
+    from pounding.display_units import display  # light: no numerical library
+
+    return args.capacity * display(args.units).system.force
 
 
 def add_units(parser: argparse.ArgumentParser, what: str) -> None:

@@ -13,7 +13,7 @@ import warnings
 from functools import partial
 
 from pounding import defaults
-from pounding.cli.arguments import study_size
+from pounding.cli.arguments import capacity_newtons, study_size
 from pounding.cli.parser import EXIT_BAD_INPUT, parser
 from pounding.cli.progress import progress_bar
 
@@ -35,15 +35,6 @@ def _shown(args):
     return display(args.units)
 
 
-def _capacity(args) -> float | None:
-    """``--capacity`` in N: given in N, or in kgf with ``--units kgf-cm-s`` (converted here, once)."""
-    if args.capacity is None:
-        return None
-    from pounding.display_units import display
-
-    return args.capacity * display(args.units).system.force
-
-
 def _simulate(args) -> int:
     from pounding.case.case import load_case
     from pounding.closed_form.estimator import estimate
@@ -53,7 +44,7 @@ def _simulate(args) -> int:
     if args.design_gap is not None:
         check_probability(args.design_gap, "--design-gap")
     case = load_case(args.case)
-    capacity = _capacity(args)
+    capacity = capacity_newtons(args)
     records, seed = study_size(case, args)
     study = simulate if args.design_gap is None else partial(design_gap, target_probability=args.design_gap)
     with progress_bar(records) as progress:
@@ -176,7 +167,7 @@ def _estimate(args) -> int:
 
         raise ArgumentError("seed", "is the seed of the Monte Carlo check: give it with --check")
     case = load_case(args.case)
-    capacity = _capacity(args)
+    capacity = capacity_newtons(args)
     result = estimate(case, target_probability=args.target_probability, paper_variance=args.paper_variance,
                       michaelov_n1=args.michaelov_n1)
     check = None if args.check is None else _check(case, result, args)
@@ -260,12 +251,9 @@ def _estimate(args) -> int:
             if line:
                 print(line)
     if at_capacity_gap is not None:
-        low, high = at_capacity_gap["probability_exceeding_interval"]
-        target = 1 - result.target_probability
-        verdict = "holds" if at_capacity_gap["holds"] else "does not hold: widen the gap"
-        print(f"At the gap for {force_text(capacity)}, {length(gap_for_capacity)}: {100 * at_capacity_gap['probability_exceeding']:.1f} % "
-              f"of {at_capacity_gap['records']} records exceed it (95 % interval {100 * low:.1f} % to {100 * high:.1f} %); "
-              f"the target of {100 * target:g} % {verdict}.")
+        from pounding.studies.check import capacity_check_sentence
+
+        print(capacity_check_sentence(at_capacity_gap, capacity, result.target_probability, force_text, length))
     return 0
 
 
@@ -337,7 +325,15 @@ def _report(args) -> int:
     check_target(args.output, "--output", probe=True)  # before any work: "", a device, a folder, read-only are refused
     path = Path(args.output)
     # The plotting libraries load here only: every other command stays fast.
-    from pounding.report import MonteCarloPoint, compute_snapshot, curve_gaps, gap_points, with_check, write_report
+    from pounding.report import (
+        MonteCarloPoint,
+        compute_snapshot,
+        curve_gaps,
+        gap_points,
+        with_capacity_check,
+        with_check,
+        write_report,
+    )
 
     # The estimate first (milliseconds): if it cannot be made, no simulation is wasted.
     snapshot = compute_snapshot(case, target_probability=args.design_gap or defaults.TARGET_PROBABILITY)
@@ -351,9 +347,12 @@ def _report(args) -> int:
         gaps = curve_gaps(case, snapshot.estimate, args.gap_points)
         monte_carlo += run(partial(gap_points, gaps=gaps), args.gap_points * args.records)
     free = run(partial(design_gap, target_probability=args.design_gap)) if args.design_gap is not None else None
-    snapshot = replace(snapshot, monte_carlo=monte_carlo, design_gap=free)
+    snapshot = replace(snapshot, monte_carlo=monte_carlo, design_gap=free, capacity=capacity_newtons(args))
     with progress_bar() as progress:  # the verdict: on --records' records, else as many as its precision asks
         snapshot = with_check(snapshot, progress)
+    if snapshot.capacity is not None:
+        with progress_bar() as progress:  # the gap for --capacity, on the check's records
+            snapshot = with_capacity_check(snapshot, progress)
     write_report(path, snapshot, units=args.units, field="--output", provenance=_report_provenance(args))
     if args.json:
         figures = snapshot.estimate.to_dict()
@@ -364,6 +363,9 @@ def _report(args) -> int:
         if free is not None:
             figures["monte_carlo_design_gap"] = free.to_dict()
         figures.update(check=snapshot.check.to_dict(), **snapshot.check.answers())
+        if snapshot.capacity is not None:  # as estimate --capacity --check gives them
+            figures.update(capacity=snapshot.capacity, probability_exceeding=snapshot.estimate.probability_exceeding(snapshot.capacity),
+                           gap_for_capacity=snapshot.capacity_check["gap"], gap_for_capacity_check=snapshot.capacity_check)
         print(json.dumps({"report": str(path), **figures}))
     else:
         print(f"wrote {path} ({path.stat().st_size / 1e6:.1f} MB)")
@@ -382,7 +384,8 @@ def _report_provenance(args):
     command = shlex.join(["pounding", "report", args.case, "-o", args.output, "--units", args.units]
                          + (["--records", str(args.records), "--seed", str(args.seed)] if args.records else [])
                          + (["--gap-points", str(args.gap_points)] if args.gap_points else [])
-                         + (["--design-gap", f"{args.design_gap:g}"] if args.design_gap is not None else []))
+                         + (["--design-gap", f"{args.design_gap:g}"] if args.design_gap is not None else [])
+                         + (["--capacity", f"{args.capacity:.12g}"] if args.capacity is not None else []))
     if preset_text(args.case) is not None:
         return ReportProvenance(args.case, args.case, (), command)
     data = read_case_file(args.case)

@@ -9,7 +9,8 @@ import argparse
 import json
 
 from pounding import defaults
-from pounding.cli.arguments import add_units, bounded_number, increasing_values, record_count, whole_number_type
+from pounding.cli.arguments import (add_capacity, add_units, bounded_number, capacity_newtons, increasing_values, record_count,
+                                    whole_number_type)
 from pounding.cli.progress import progress_bar
 
 __all__ = ["add_fragility", "add_spectrum", "run_fragility", "run_spectrum"]
@@ -45,8 +46,7 @@ def add_fragility(commands) -> None:
         "  pounding fragility case.toml --capacity 30000 --units kgf-cm-s --pga 0.1,0.2,0.3,0.4 --json",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    parser.add_argument("--capacity", type=bounded_number(0.0, 1e15, open_low=True), metavar="F", required=True,
-                        help="the capacity F: N, or kgf with --units kgf-cm-s")
+    add_capacity(parser, "", required=True)
     parser.add_argument("--pga", type=increasing_values("g"), metavar="A:B:N", required=True,
                         help="expected peak ground accelerations in g: start:stop:count or a,b,c, increasing")
     _common(parser)
@@ -116,7 +116,7 @@ def run_fragility(args) -> int:
     from pounding.units import STANDARD_GRAVITY
 
     shown = display(args.units)
-    capacity = args.capacity * shown.system.force  # kgf -> N with --units kgf-cm-s
+    capacity = capacity_newtons(args)
 
     def compute(progress):
         return fragility_curve(args.case, capacity, [a * STANDARD_GRAVITY for a in args.pga], _plan(args, progress))

@@ -10,9 +10,9 @@ from functools import lru_cache
 
 from pounding import defaults
 from pounding.cli.arguments import (
+    add_capacity,
     add_units,
     bounded_number,
-    capacity,
     probability,
     record_count,
     tolerance,
@@ -89,9 +89,7 @@ def parser() -> argparse.ArgumentParser:
     simulate.add_argument("--seed", type=_non_negative_int, default=None, help=f"seed of the study (default {defaults.SEED})")
     simulate.add_argument("--tolerance", type=tolerance, default=defaults.INTEGRATOR_TOLERANCE,
                           help=f"relative tolerance of the integrator (default {defaults.INTEGRATOR_TOLERANCE:g})")
-    simulate.add_argument("--capacity", type=capacity, metavar="F", default=None,
-                          help="a capacity F (N; kgf with --units kgf-cm-s): also the fraction of records whose F_max "
-                          "exceeds it, with its 95 %% interval")
+    add_capacity(simulate, "also the fraction of records whose F_max exceeds it, with its 95 %% interval")
     add_units(simulate, "--capacity (N or kgf) and of the numbers printed")
     simulate.add_argument("--json", action="store_true", help="print one JSON object (SI units) instead of a table")
     simulate.add_argument("--design-gap", type=probability, metavar="P", default=None,
@@ -121,8 +119,7 @@ def parser() -> argparse.ArgumentParser:
                           help="the paper's method under an envelope: order n1 of the moments of Michaelov's equivalent "
                           "stationary process, Eq. 29, in [{:g}, {:g}] (default {:g}, as the paper)".format(
                               *defaults.MICHAELOV_N1_RANGE, defaults.MICHAELOV_N1))
-    estimate.add_argument("--capacity", type=capacity, metavar="F", default=None,
-                          help="a capacity F (N; kgf with --units kgf-cm-s): also the probability that F_max exceeds it")
+    add_capacity(estimate, "also the probability that F_max exceeds it, and the gap sized to it")
     add_units(estimate, "--capacity (N or kgf) and of the numbers printed")
     estimate.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     estimate.add_argument("--check", type=record_count, nargs="?", const=ADAPTIVE, default=None, metavar="N",
@@ -183,7 +180,8 @@ def parser() -> argparse.ArgumentParser:
         epilog="examples:\n  pounding report section5-T2-0.4 -o report.html\n"
         "  pounding report case.toml -o case.html --records 300 --units kgf-cm-s\n"
         "  pounding report section5-T2-0.4 -o report.html --records 100 --gap-points 4\n"
-        "  pounding report section5-T2-0.4 -o report.html --records 300 --design-gap 0.95",
+        "  pounding report section5-T2-0.4 -o report.html --records 300 --design-gap 0.95\n"
+        "  pounding report section5-T2-0.4 -o report.html --capacity 3e5",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     report.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
@@ -200,7 +198,9 @@ def parser() -> argparse.ArgumentParser:
     report.add_argument("--design-gap", type=float, metavar="P", default=None,
                         help="also the Monte Carlo gap for probability P of no pounding, in (0, 1), from the free motion of "
                         "the same --records (needed); P is then the target of the closed-form gap too")
-    add_units(report, "the numbers in the report")
+    add_capacity(report, "also the probability that F_max exceeds it and the gap sized to it, that gap checked on "
+                 "the records of the Monte Carlo check")
+    add_units(report, "--capacity (N or kgf) and of the numbers in the report")
     report.add_argument("--json", action="store_true", help="print one JSON object: the file written and the figures in it (SI)")
 
     from pounding.cli import curves, sweep  # light: dask, pandas and bokeh are imported when a sweep runs

@@ -33,7 +33,14 @@ state), :mod:`.card` (the result card), :mod:`.figures` (the plots),
 
 from pounding.display_units import DISPLAY_UNITS, Display, display
 from pounding.report.card import RESULT_CSS, result_html
-from pounding.report.comparison import Difference, comparison_html, differences, write_comparison
+from pounding.report.comparison import (
+    Difference,
+    StateMonteCarlo,
+    comparison_html,
+    differences,
+    monte_carlo_comparison,
+    write_comparison,
+)
 from pounding.report.figures import PLOTTED_STEPS, Figures
 from pounding.report.method_section import method_notes
 from pounding.report.provenance import CaseChange, ReportProvenance, case_changes, case_provenance
@@ -49,13 +56,15 @@ from pounding.report.snapshot import (
     gap_points,
 )
 from pounding.report.static import REPORT_NOTE, report_html, write_report
-from pounding.report.summary import MonteCarloCheck, monte_carlo_check, verdict_html, with_check
+from pounding.report.summary import MonteCarloCheck, monte_carlo_check, verdict_html, with_capacity_check, with_check
 
 __all__ = [
     "CaseChange",
     "Difference",
     "comparison_html",
     "differences",
+    "monte_carlo_comparison",
+    "StateMonteCarlo",
     "write_comparison",
     "DEFAULT_RECORD",
     "DISPLAY_UNITS",
@@ -82,6 +91,7 @@ __all__ = [
     "report_html",
     "result_html",
     "verdict_html",
+    "with_capacity_check",
     "with_check",
     "write_report",
 ]

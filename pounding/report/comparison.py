@@ -1,8 +1,10 @@
 """Two states of a case side by side, "pinned" and "current" (a design alternative, a lecture slide): their key
-numbers and the change from one to the other (:func:`differences`, in the units shown and in %), the inputs that
-differ (:func:`input_differences`), the force-against-gap curves and the distributions of F_max on one chart each,
-and the page that holds them (:func:`write_comparison`). Every number is of the two snapshots' closed-form
-estimates, as computed: nothing is recomputed here. Bokeh is imported when a chart is built."""
+numbers and the change from one to the other (:func:`differences`, in the units shown and in %), each state's
+Monte Carlo beside its closed form where one was run (:func:`monte_carlo_comparison`: the mean F_max, the change,
+whether the closed form agrees), the inputs that differ (:func:`input_differences`), the force-against-gap curves
+and the distributions of F_max on one chart each, and the page that holds them (:func:`write_comparison`). Every
+number is of the two snapshots as computed (their estimates, their checks and studies): nothing is recomputed
+here. Bokeh is imported when a chart is built."""
 
 from __future__ import annotations
 
@@ -22,10 +24,12 @@ from pounding.output import check_target, write_atomic
 from pounding.report.bokeh_embed import embedded, without_external
 from pounding.report.inputs_section import input_rows
 from pounding.report.print_css import FIGURE_WIDTH, REPORT_CSS
-from pounding.report.snapshot import Snapshot
+from pounding.report.snapshot import MonteCarloPoint, Snapshot
+from pounding.report.summary import matching_study
+from pounding.studies.check import EstimateCheck
 
-__all__ = ["COMPARISON_NAMES", "Difference", "comparison_html", "differences", "distribution_points", "input_differences",
-           "write_comparison"]
+__all__ = ["COMPARISON_NAMES", "NO_MONTE_CARLO", "Difference", "StateMonteCarlo", "comparison_html", "differences", "distribution_points",
+           "input_differences", "monte_carlo_comparison", "write_comparison"]
 
 COMPARISON_NAMES = ("pinned", "current")
 """What the two states are called on the page and in the comparison report."""
@@ -74,6 +78,8 @@ class Difference:
     def change_text(self, shown: Display) -> str:
         """The change with its unit and in %: "+12.5 kN (+8.1 %)"; a probability's in percentage points."""
         change = self.change
+        if not math.isfinite(change):  # a state without this number
+            return "n/a"
         if change == 0:
             return "no change"
         if self.kind == "probability":
@@ -99,6 +105,74 @@ def differences(pinned: Estimate, current: Estimate) -> tuple[Difference, ...]:
         Difference("probability of pounding", "probability", pinned.pounding_probability, current.pounding_probability),
         Difference(f"gap for {target} no pounding", "length", pinned.required_gap, current.required_gap),
     )
+
+
+@dataclass(frozen=True)
+class StateMonteCarlo:
+    """A state's Monte Carlo beside its closed form: its check against simulated records
+    (:func:`~pounding.studies.check.check_estimate`) where made, else a study at its gap.
+
+    Attributes
+    ----------
+    force_max_mean : float
+        The records' mean F_max [N].
+    records : int
+        Their number.
+    agrees : bool or None
+        Whether the closed form agrees with them (the check's rule); None for a study that is not a check.
+    error : float
+        The closed form's E[F_max] over the mean, minus 1 [-]; nan where no record pounded.
+    """
+
+    force_max_mean: float
+    records: int
+    agrees: bool | None
+    error: float
+
+    @classmethod
+    def of(cls, estimate: Estimate, check: EstimateCheck | None = None,
+           study: MonteCarloPoint | None = None) -> StateMonteCarlo | None:
+        """The Monte Carlo of the state whose closed form is ``estimate``: its ``check`` (of that estimate) when
+        given, else ``study`` (at its gap); None with neither."""
+        if check is not None:
+            return cls(check.force_max_mean, check.records, check.agrees, check.error)
+        if study is None:
+            return None
+        mean = study.force_max_mean
+        return cls(mean, study.records, None, estimate.force_expected / mean - 1.0 if mean > 0.0 else math.nan)
+
+    @classmethod
+    def of_snapshot(cls, snapshot: Snapshot) -> StateMonteCarlo | None:
+        """:meth:`of` the snapshot's estimate, its ``check`` and its last study at its own gap."""
+        return cls.of(snapshot.estimate, snapshot.check, matching_study(snapshot))
+
+    def verdict(self) -> str:
+        """Whether the closed form agrees, in words: "agrees (3 % under the mean of 144 records)"."""
+        plural = "s" if self.records != 1 else ""
+        if math.isfinite(self.error):
+            where = f"{100 * abs(self.error):.0f} % {'under' if self.error < 0 else 'over'} the mean of {self.records} record{plural}"
+        else:
+            where = f"no record of {self.records} pounded"
+        if self.agrees is None:
+            return f"not checked: {where}"
+        return f"{'agrees' if self.agrees else 'does not agree'} ({where})"
+
+
+NO_MONTE_CARLO = "no Monte Carlo run"
+"""A state's verdict where it has no Monte Carlo."""
+
+
+def monte_carlo_comparison(pinned: StateMonteCarlo | None,
+                           current: StateMonteCarlo | None) -> tuple[Difference, tuple[str, str]] | None:
+    """The two states' Monte Carlo means F_max (a :class:`Difference`: its change current minus pinned, n/a where a
+    state has none) and each one's verdict in words (:meth:`StateMonteCarlo.verdict`, :data:`NO_MONTE_CARLO`); None
+    where neither state has a Monte Carlo."""
+    if pinned is None and current is None:
+        return None
+    mean = Difference("Monte Carlo mean of the extreme force", "force",
+                      math.nan if pinned is None else pinned.force_max_mean,
+                      math.nan if current is None else current.force_max_mean)
+    return mean, tuple(NO_MONTE_CARLO if state is None else state.verdict() for state in (pinned, current))
 
 
 def input_differences(pinned: Estimate, current: Estimate, units: str = "SI") -> list[tuple[str, str, str, str]]:
@@ -187,12 +261,21 @@ _COMPARISON_CSS = """
 """
 
 
+def _difference_row(d: Difference, shown: Display, css: str = "") -> str:
+    named = f' class="{css}"' if css else ""
+    return (f'<tr{named}><th>{html.escape(d.quantity)}</th><td class="pinned">{html.escape(d.value_text(d.pinned, shown))}</td>'
+            f'<td class="current">{html.escape(d.value_text(d.current, shown))}</td>'
+            f'<td class="change">{html.escape(d.change_text(shown))}</td></tr>')
+
+
 def _numbers_html(pinned: Snapshot, current: Snapshot, shown: Display) -> str:
-    rows = "".join(
-        f'<tr><th>{html.escape(d.quantity)}</th><td class="pinned">{html.escape(d.value_text(d.pinned, shown))}</td>'
-        f'<td class="current">{html.escape(d.value_text(d.current, shown))}</td>'
-        f'<td class="change">{html.escape(d.change_text(shown))}</td></tr>'
-        for d in differences(pinned.estimate, current.estimate))
+    rows = "".join(_difference_row(d, shown) for d in differences(pinned.estimate, current.estimate))
+    checked = monte_carlo_comparison(StateMonteCarlo.of_snapshot(pinned), StateMonteCarlo.of_snapshot(current))
+    if checked is not None:
+        mean, (before, after) = checked
+        rows += (_difference_row(mean, shown, "monte-carlo")
+                 + f'<tr class="monte-carlo-verdict"><th>closed form against Monte Carlo</th><td class="pinned">'
+                 f'{html.escape(before)}</td><td class="current">{html.escape(after)}</td><td></td></tr>')
     return ('<table class="comparison numbers"><thead><tr><th></th><th>pinned</th><th>current</th>'
             f"<th>change (current minus pinned)</th></tr></thead><tbody>{rows}</tbody></table>")
 
@@ -225,8 +308,9 @@ def comparison_html(pinned: Snapshot, current: Snapshot, units: str = "SI", titl
         f'<header><h1>{html.escape(title)}</h1><p class="made">Written {stamp} by pounding {html.escape(__version__)}.</p>'
         f"{named}</header>"
         '<section class="summary"><h2>1. Key numbers</h2>' + _numbers_html(pinned, current, shown)
-        + "<p>Closed-form estimates of each state, as computed; export each state's own report for its check against "
-        "simulated records.</p></section>"
+        + "<p>Closed-form estimates of each state, as computed; where a state was checked against simulated records "
+        "(or simulated at its gap), the Monte Carlo mean and whether the closed form agrees follow. Export each "
+        "state's own report for its full check.</p></section>"
         '<section class="inputs"><h2>2. Inputs that differ</h2>' + _inputs_html(pinned, current, units) + "</section>"
         '<section class="figures"><h2>3. Figures</h2>'
         f'<figure>{divs[0]}<figcaption>Figure 1. Expected extreme force against the gap: pinned (dashed), current '

@@ -95,6 +95,13 @@ class Snapshot:
     gap_accuracy : tuple of MeasuredRange
         The measured accuracy of the recommended E[F_max] at each gap of ``gap_curve``
         (:func:`~pounding.closed_form.regimes.measured_range`): the figure's band.
+    capacity : float or None
+        A force the contact can take [N] (``pounding report --capacity``, the dashboard's capacity): the report
+        then states P(F_max > capacity) and the gap sized to it; None: neither.
+    capacity_check : dict or None
+        The Monte Carlo at the gap for ``capacity`` on the records of ``check``
+        (:func:`~pounding.studies.check.check_gap_for_capacity`); None until a report is made
+        (:func:`~.summary.with_capacity_check` runs it).
     """
 
     case: Case
@@ -113,6 +120,8 @@ class Snapshot:
     design_gap: DesignGap | None = None
     check: EstimateCheck | None = None
     gap_accuracy: tuple = ()
+    capacity: float | None = None
+    capacity_check: dict | None = None
 
     def gap_band(self) -> tuple[np.ndarray, np.ndarray]:
         """Where the Monte Carlo E[F_max] lay at each gap of ``gap_curve`` given the closed form's, by the errors

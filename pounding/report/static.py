@@ -33,7 +33,7 @@ from pounding.report.method_section import method_notes
 from pounding.report.print_css import REPORT_CSS
 from pounding.report.provenance import ReportProvenance
 from pounding.report.snapshot import Snapshot, compute_snapshot
-from pounding.report.summary import summary_html, with_check
+from pounding.report.summary import summary_html, with_capacity_check, with_check
 
 # --- the static report ---------------------------------------------------------
 
@@ -155,8 +155,10 @@ def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None,
     figures' captions are static HTML, read without JavaScript; the plots are drawn by Bokeh.
 
     The summary leads with the verdict: the snapshot's Monte Carlo check, run here when it has none
-    (:func:`~.summary.with_check`: on the records of a study at the case's gap, else as many as its precision asks)."""
-    snapshot = with_check(snapshot)
+    (:func:`~.summary.with_check`: on the records of a study at the case's gap, else as many as its precision asks);
+    with a capacity (``snapshot.capacity``), the gap sized to it and its Monte Carlo on the same records
+    (:func:`~.summary.with_capacity_check`)."""
+    snapshot = with_capacity_check(with_check(snapshot))
     case = snapshot.case
     provenance = provenance or case_provenance_from_name(case)
     title = report_title(case, provenance, title)

@@ -16,10 +16,16 @@ from pounding import defaults
 from pounding.display_units import Display, display
 from pounding.report.snapshot import MonteCarloPoint, Snapshot
 from pounding.simulation.plan import MonteCarloPlan
-from pounding.studies.check import EstimateCheck, check_estimate, unpounded_bound
+from pounding.studies.check import (
+    EstimateCheck,
+    capacity_check_sentence,
+    check_estimate,
+    check_gap_for_capacity,
+    unpounded_bound,
+)
 
-__all__ = ["MonteCarloCheck", "code_checks_html", "gap_sentence", "matching_study", "monte_carlo_check", "summary_rows", "summary_html", "verdict_html",
-           "with_check"]
+__all__ = ["MonteCarloCheck", "capacity_gap", "code_checks_html", "gap_sentence", "matching_study", "monte_carlo_check",
+           "summary_rows", "summary_html", "verdict_html", "with_capacity_check", "with_check"]
 
 
 def matching_study(snapshot: Snapshot) -> MonteCarloPoint | None:
@@ -46,6 +52,26 @@ def with_check(snapshot: Snapshot, progress: Callable[[int, int], None] | None =
     plan = (MonteCarloPlan(None, snapshot.seed, progress=progress) if study is None
             else MonteCarloPlan(study.records, study.seed, progress=progress))
     return dataclasses.replace(snapshot, check=check_estimate(snapshot.estimate, plan))
+
+
+def with_capacity_check(snapshot: Snapshot, progress: Callable[[int, int], None] | None = None) -> Snapshot:
+    """The snapshot with the Monte Carlo at the gap for its capacity (``snapshot.capacity_check``,
+    :func:`~pounding.studies.check.check_gap_for_capacity` on the records of ``snapshot.check``): as given; unchanged
+    without a capacity or a check. ``progress(done, total)`` counts its records."""
+    if snapshot.capacity is None or snapshot.check is None or snapshot.capacity_check is not None:
+        return snapshot
+    at_gap = check_gap_for_capacity(snapshot.estimate, snapshot.capacity, snapshot.check, progress)
+    return dataclasses.replace(snapshot, capacity_check=at_gap)
+
+
+def capacity_gap(snapshot: Snapshot) -> float | None:
+    """The closed form's gap for the snapshot's capacity [m] (:meth:`~pounding.closed_form.estimator.Estimate.gap_for_capacity`,
+    taken from ``capacity_check`` when made: computed once); None without a capacity."""
+    if snapshot.capacity is None:
+        return None
+    if snapshot.capacity_check is not None:
+        return snapshot.capacity_check["gap"]
+    return snapshot.estimate.gap_for_capacity(snapshot.capacity)
 
 
 def _study_words(check: EstimateCheck) -> str:
@@ -109,10 +135,28 @@ def summary_rows(snapshot: Snapshot, units: str = "SI") -> list[tuple[str, str, 
         rows.append(("Monte Carlo check", "not run", "no records were simulated"))
     else:
         rows += _check_rows(check, d)
+    if snapshot.capacity is not None:
+        rows += _capacity_rows(snapshot, d)
     gap = snapshot.design_gap
     if gap is not None:
         rows.append((f"Monte Carlo gap for {100 * gap.target_probability:g} % no pounding (free motion)", d.length(gap.gap),
                      f"{gap.n_records} records' free motion, seed {gap.seed}; 90 % upper bound {d.length(gap.upper_bound)}"))
+    return rows
+
+
+def _capacity_rows(snapshot: Snapshot, d: Display) -> list[tuple[str, str, str]]:
+    """P(F_max > capacity) at the gap entered, the gap sized to the capacity, and its Monte Carlo when made."""
+    e, capacity, at_gap = snapshot.estimate, snapshot.capacity, snapshot.capacity_check
+    force, target = d.force(capacity), f"{100 * (1 - e.target_probability):g} %"
+    rows = [(f"probability that F_max exceeds {force}", f"{100 * e.probability_exceeding(capacity):.3g} %",
+             f"closed form, at the gap of {d.length(snapshot.case.contact.gap)}"),
+            (f"gap for P(F_max > {force}) at most {target}", d.length(capacity_gap(snapshot)),
+             "closed form: a force the contact can take, instead of no contact at all")]
+    if at_gap is not None:
+        low, high = at_gap["probability_exceeding_interval"]
+        rows.append((f"Monte Carlo at that gap: records over {force}", f"{100 * at_gap['probability_exceeding']:.3g} %",
+                     f"{at_gap['records']} records; 95 % interval {100 * low:.3g} to {100 * high:.3g} %; the target "
+                     f"of {target} {'holds' if at_gap['holds'] else 'does not hold'}"))
     return rows
 
 
@@ -146,8 +190,15 @@ def gap_sentence(snapshot: Snapshot, units: str = "SI") -> str:
     needed = snapshot.check.gap_answer if snapshot.check is not None else e.required_gap
     entered = snapshot.case.contact.gap
     verdict = "is adequate" if entered >= needed else "is not adequate"
-    return (f"The gap entered, {d.length(entered)}, {verdict} for {100 * e.target_probability:g} % probability of no "
-            f"pounding: that takes {d.length(needed)}.")
+    sentence = (f"The gap entered, {d.length(entered)}, {verdict} for {100 * e.target_probability:g} % probability of no "
+                f"pounding: that takes {d.length(needed)}.")
+    if snapshot.capacity is None:
+        return sentence
+    force, sized = d.force(snapshot.capacity), capacity_gap(snapshot)
+    enough = "enough" if entered >= sized else "not enough"
+    return (f"{sentence} For a capacity of {force}, the probability that the largest force exceeds it is "
+            f"{100 * e.probability_exceeding(snapshot.capacity):.3g} % at the gap entered; a gap of {d.length(sized)} "
+            f"keeps it at or below {100 * (1 - e.target_probability):g} %, so the gap entered is {enough} for that force.")
 
 
 def code_checks_html(snapshot: Snapshot, units: str = "SI") -> str:
@@ -177,6 +228,11 @@ def summary_html(snapshot: Snapshot, units: str = "SI") -> str:
     warnings = "".join(f'<p class="warning">&#9888; {html.escape(w)}</p>' for w in snapshot.estimate.warnings)
     verdict = verdict_html(snapshot, units) if snapshot.check is not None else ""
     adequate = f'<p class="gap-adequate"><b>{html.escape(gap_sentence(snapshot, units))}</b></p>'
+    if snapshot.capacity_check is not None:
+        d = display(units)
+        at_gap = capacity_check_sentence(snapshot.capacity_check, snapshot.capacity, snapshot.estimate.target_probability,
+                                         d.force, d.length)
+        adequate += f'<p class="capacity-check">{html.escape(at_gap)}</p>'
     return (code_checks_html(snapshot, units) + adequate + verdict + '<table class="summary"><thead><tr><th>quantity</th><th>value</th><th>note</th></tr></thead><tbody>'
             + "".join(cells) + "</tbody></table>" + warnings)
 

@@ -43,8 +43,8 @@ from pounding.simulation.monte_carlo import design_gap, gap_from_peaks, simulate
 from pounding.simulation.plan import MonteCarloPlan, as_plan
 from pounding.simulation.result import SimulationResult, mean_interval, quantile_interval
 
-__all__ = ["EstimateCheck", "RowCheck", "agrees", "check_row", "check_estimate", "check_gap_for_capacity", "contact_check", "monte_carlo_of",
-           "unpounded_bound"]
+__all__ = ["EstimateCheck", "RowCheck", "agrees", "capacity_check_sentence", "check_estimate", "check_gap_for_capacity",
+           "check_row", "contact_check", "monte_carlo_of", "unpounded_bound"]
 
 _SMALLEST_CHUNK = 25
 """Fewest records of a chunk after the first, where the interval asks for only a few more."""
@@ -434,15 +434,29 @@ def _next_chunk(result: SimulationResult) -> int:
     return min(room, max(wanted - records, _SMALLEST_CHUNK))
 
 
-def check_gap_for_capacity(estimate: Estimate, capacity: float, check: EstimateCheck) -> dict:
+def check_gap_for_capacity(estimate: Estimate, capacity: float, check: EstimateCheck,
+                           progress: Callable[[int, int], None] | None = None) -> dict:
     """The Monte Carlo at the closed form's gap for a ``capacity`` [N] (:meth:`Estimate.gap_for_capacity`), on the
     records of ``check`` (its count and seed; a recorded suite's own records, each once): the gap [m], the records,
     the fraction whose F_max exceeds the capacity with its 95 % Wilson interval, and ``holds``: whether that interval
-    reaches down to the target 1 - ``estimate.target_probability``."""
+    reaches down to the target 1 - ``estimate.target_probability``. ``progress(done, total)`` counts its records."""
     gap = estimate.gap_for_capacity(capacity)
     case = estimate.case
     at_gap = case.with_contact(gap=gap)
-    study = simulate(at_gap) if case.recorded else simulate(at_gap, records=check.records, seed=check.seed)
+    study = (simulate(at_gap, progress=progress) if case.recorded
+             else simulate(at_gap, records=check.records, seed=check.seed, progress=progress))
     exceedance = study.exceedance(capacity)
     holds = exceedance["probability_exceeding_interval"][0] <= 1.0 - estimate.target_probability
     return {"gap": gap, "records": study.n_records, **exceedance, "holds": bool(holds)}
+
+
+def capacity_check_sentence(at_gap: dict, capacity: float, target_probability: float, force: Callable[[float], str],
+                            length: Callable[[float], str]) -> str:
+    """:func:`check_gap_for_capacity`'s answer ``at_gap`` in one sentence, every number with its unit (``force`` and
+    ``length`` as in :meth:`EstimateCheck.sentences`): how many records exceed the ``capacity`` [N] at the gap for
+    it, and whether the target 1 - ``target_probability`` holds there."""
+    low, high = at_gap["probability_exceeding_interval"]
+    verdict = "holds" if at_gap["holds"] else "does not hold: widen the gap"
+    return (f"At the gap for {force(capacity)}, {length(at_gap['gap'])}: {100 * at_gap['probability_exceeding']:.1f} % "
+            f"of {at_gap['records']} records exceed it (95 % interval {100 * low:.1f} % to {100 * high:.1f} %); "
+            f"the target of {100 * (1 - target_probability):g} % {verdict}.")
