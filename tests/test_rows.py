@@ -296,3 +296,23 @@ def test_a_bad_contact_exits_2_with_one_line_naming_its_key(tmp_path):
     out = run("estimate", str(path))
     assert out.returncode == 2
     assert out.stderr.strip().count("\n") == 0 and "contacts.2.levels" in out.stderr and "building 2 has 2 storey" in out.stderr
+
+
+def test_a_cases_kind_and_its_measured_accuracy():
+    """Each grid case is classified as the kind it was built as, and an estimate states that kind's measured range."""
+    import json
+    from pathlib import Path
+
+    from pounding import estimate
+    from pounding.closed_form.regimes import row_kind
+    from pounding.studies.row_grid import row_cases
+
+    for case in row_cases()[::4]:
+        assert case.name.startswith(row_kind(case) + ":"), case.name
+    result = estimate(row())
+    measured = json.loads((Path(__file__).parents[1] / "pounding" / "data" / "accuracy.json").read_text())
+    entry = measured["force"]["several contacts"]["three in a row"]
+    assert (result.accuracy.low, result.accuracy.high, result.accuracy.cases) == (entry["low"], entry["high"], entry["cases"])
+    assert "rows of three buildings" in result.measured_accuracy
+    assert all(len(w) <= 200 for w in result.warnings)
+    assert result.to_dict()["contacts"][0]["measured_accuracy"].startswith("Measured")

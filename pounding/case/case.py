@@ -98,8 +98,8 @@ class Case:
         """The case's one contact; :class:`CaseError` naming ``contacts`` when it has several
         (take each with :meth:`pair`)."""
         if len(self.contacts) != 1:
-            raise CaseError("contacts", f"the case has {len(self.contacts)} contacts, and this takes one; "
-                                        "each contact's two buildings alone are case.pair(i)")
+            raise CaseError("contacts", f"the case has {len(self.contacts)} contacts and this takes one; "
+                                        "estimate, simulate, fragility and spectrum take several")
         return self.contacts[0]
 
     def with_contact(self, **changes) -> Case:

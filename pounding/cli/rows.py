@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from pounding import defaults
 from pounding.case.case import contact_label
+from pounding.closed_form.row import safe_side_statement
 
 
 def _contact_columns(case) -> list[str]:
@@ -54,8 +55,8 @@ def row_estimate_lines(case, result, shown, capacity: float | None, check=None) 
             mine = check.contacts[index]
             row += f"  {force(mine.force_max_mean):>11s}  {'agrees' if mine.agrees else 'MC stands'}"
         lines.append(row)
-    lines.append("accuracy: each contact's estimate states its own (--json: contacts[i].measured_accuracy); "
-                 "what one contact's impacts do at another is not in the closed form: docs/accuracy.md, several contacts")
+    lines.append(f"accuracy, largest force: {result.measured_accuracy}")
+    lines.append(f"accuracy, each contact:  {safe_side_statement(result.contact_accuracy)}")
     lines += [f"warning: {warning}" for warning in result.warnings]
     return lines
 

@@ -28,12 +28,11 @@ from pounding.closed_form.gap_aware import (
     gap_for_probability,
     opposing_forces,
 )
-from pounding.closed_form.linearization import linearize_row
 from pounding.closed_form.pair import LinearizedPair
 from pounding.closed_form.paper_method import PaperEstimate, check_michaelov_n1, paper_estimate
-from pounding.closed_form.regimes import MeasuredRange, assess, extreme_warnings, hazard_warnings
+from pounding.closed_form.regimes import MeasuredRange, assess, extreme_warnings, hazard_warnings, row_measured_range
 from pounding.closed_form.response import ContactResponse
-from pounding.closed_form.row import RowEstimate, largest_force_distribution
+from pounding.closed_form.row import RowEstimate, contact_pairs, largest_force_distribution
 from pounding.closed_form.separation import CodeCheck, code_checks, separation_rules
 from pounding.errors import ArgumentError, check_limit, check_probability
 from pounding.mechanics.contact import peak_force_ratio
@@ -302,14 +301,10 @@ def estimate(
 
 def _row_estimate(case: Case, target_probability: float, paper_variance: str, michaelov_n1: float) -> RowEstimate:
     """Each contact's estimate on its pair of buildings, each building linearized once."""
-    buildings = linearize_row(case)
-    contacts = tuple(
-        estimate(LinearizedPair(case.pair(index), tuple(buildings[b - 1] for b in contact.between)), target_probability,
-                 paper_variance, michaelov_n1)
-        for index, contact in enumerate(case.contacts)
-    )
+    contacts = tuple(estimate(pair, target_probability, paper_variance, michaelov_n1) for pair in contact_pairs(case))
     distribution = largest_force_distribution([c.force_max_distribution for c in contacts])
-    return RowEstimate(case, contacts, distribution, float(target_probability))
+    return RowEstimate(case, contacts, distribution, float(target_probability), row_measured_range(case),
+                       row_measured_range(case, each_contact=True))
 
 
 @dataclass(frozen=True)

@@ -80,6 +80,8 @@ class LinearizedPair:
         """Linearize ``case``'s buildings (options of :func:`~pounding.closed_form.linearization.linearize`)."""
         if not isinstance(case, Case):
             raise ArgumentError("case", f"must be a Case (from load_case), got {type(case).__name__}")
+        case.contact  # noqa: B018 -- CaseError naming ``contacts`` for a case of several (pounding.closed_form.row)
+        case = case.pair(0)  # the contact's two buildings: a row of them with one contact
         return cls(case, tuple(linearize_pair(case, **linearization)))
 
     @property

@@ -27,6 +27,10 @@ from pounding.mechanics.contact import undamped_peak_force
 from pounding.units import STANDARD_GRAVITY
 
 __all__ = [
+    "ROW_KINDS",
+    "error_span",
+    "row_kind",
+    "row_measured_range",
     "CUTOFF_SHARE_LIMIT",
     "FORCE_WEIGHT_LIMIT",
     "MODERATE_GAP",
@@ -225,7 +229,7 @@ class MeasuredRange:
         Monte Carlo verdict stands beside it (``with_verdict``); otherwise how often it was within 10 % and that
         this case needs its check."""
         if with_verdict or self.signable:
-            return (f"Measured {_span(self)} off Monte Carlo {self.where} (within 10 % on {self.within_10_percent} "
+            return (f"Measured {error_span(self)} off Monte Carlo {self.where} (within 10 % on {self.within_10_percent} "
                     f"of {self.cases} cases).")
         return (f"Within 10 % of Monte Carlo on {self.within_10_percent} of {self.cases} cases {self.where} (median "
                 f"{100 * self.median_abs_error:.0f} %), more than {100 * SIGNABLE_ERROR:.0f} % off on some: check this "
@@ -268,6 +272,38 @@ def measured_range(pair, gap: float | None = None, sigma_x: float | None = None)
         where = _WHERE[regime] + (" under a Clough-Penzien spectrum" if spectrum == "clough-penzien" else "")
     return MeasuredRange(regime, float(entry["low"]), float(entry["high"]), int(entry["cases"]),
                          int(entry["within_10_percent"]), where, float(entry["median_abs_error"]))
+
+
+ROW_KINDS = ("aligned floors", "unequal heights", "three in a row")
+"""The kinds of cases of several contacts whose largest force was measured (accuracy.json's ``force["several
+contacts"]``, :mod:`pounding.studies.row_grid`)."""
+_ROW_WHERE = {
+    "aligned floors": "on two buildings meeting at every floor they share",
+    "unequal heights": "on a taller building meeting a shorter one at several floors",
+    "three in a row": "on rows of three buildings",
+}
+
+
+def row_kind(case) -> str:
+    """The kind of a case of several contacts (:data:`ROW_KINDS`): three or more buildings are a row; two of the same
+    storeys meeting floor to floor, aligned floors; any other two, unequal heights."""
+    if len(case.buildings) > 2:
+        return "three in a row"
+    aligned = all(c.levels[0] == c.levels[1] for c in case.contacts)
+    same = case.buildings[0].n_storeys == case.buildings[1].n_storeys
+    return "aligned floors" if aligned and same else "unequal heights"
+
+
+def row_measured_range(case, each_contact: bool = False) -> MeasuredRange:
+    """The measured accuracy of the largest force over all contacts of a case of several contacts (``each_contact``:
+    of each contact's force): its kind's row of accuracy.json's ``force["several contacts"]`` (``force["several
+    contacts, each contact"]``)."""
+    kind = row_kind(case)
+    table = "several contacts, each contact" if each_contact else "several contacts"
+    entry = accuracy_data()["force"][table][kind]
+    where = ("at each contact " if each_contact else "") + _ROW_WHERE[kind]
+    return MeasuredRange(kind, float(entry["low"]), float(entry["high"]), int(entry["cases"]), int(entry["within_10_percent"]),
+                         where, float(entry["median_abs_error"]))
 
 
 def accuracy_band(force, ranges) -> tuple[np.ndarray, np.ndarray]:
@@ -343,7 +379,7 @@ def _required_gap_warning(pair, spectrum: str, yielding: bool, target_probabilit
             f"of records pounded at such a gap for 95 %. Use `pounding simulate --design-gap {target_probability:.8g}`.")
 
 
-def _span(entry: dict | MeasuredRange) -> str:
+def error_span(entry: dict | MeasuredRange) -> str:
     """A measured range of errors (accuracy.json's entry, or a :class:`MeasuredRange`) as the estimate prints it:
     ``-19 % to +13 %``."""
     low, high = (entry["low"], entry["high"]) if isinstance(entry, dict) else (entry.low, entry.high)
@@ -351,10 +387,10 @@ def _span(entry: dict | MeasuredRange) -> str:
 
 
 def _bounded_span(entry: dict | MeasuredRange) -> str:
-    """:func:`_span` where the range lies within :data:`SIGNABLE_ERROR` either side, else "more than 30 %": a warning
+    """:func:`error_span` where the range lies within :data:`SIGNABLE_ERROR` either side, else "more than 30 %": a warning
     prints no wider range (the Monte Carlo check gives this case's own error)."""
     low, high = (entry["low"], entry["high"]) if isinstance(entry, dict) else (entry.low, entry.high)
-    return _span(entry) if _signable(low, high) else f"more than {100 * SIGNABLE_ERROR:.0f} %"
+    return error_span(entry) if _signable(low, high) else f"more than {100 * SIGNABLE_ERROR:.0f} %"
 
 
 def extreme_warnings(pair, force: float, paper_force: float | None, velocity: float, sigma_x: float) -> tuple[str, ...]:

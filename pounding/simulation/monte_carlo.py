@@ -272,7 +272,7 @@ class TimeHistory:
     displacement, velocity, hysteretic : ndarray, shape (steps, floors)
         Floor displacements [m] and velocities [m/s] relative to the ground,
         storey hysteretic displacements z [m]; floors of building 1, then 2, ...
-    contact_forces, penetrations : ndarray, shape (steps, contacts)
+    contact_forces, penetrations : ndarray, one column per contact
         Each contact's pounding force [N] and penetration delta = x_left - x_right - gap [m].
     drift, storey_force : ndarray, shape (steps, floors)
         Storey drifts [m] and restoring forces alpha k u + (1 - alpha) k z [N]

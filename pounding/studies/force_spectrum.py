@@ -16,7 +16,7 @@ from pounding import defaults
 from pounding.blas import single_blas_thread
 from pounding.case.case import Case, as_case
 from pounding.case.scaling import with_fundamental_periods
-from pounding.closed_form.regimes import accuracy_band, measured_range
+from pounding.closed_form.regimes import accuracy_band
 from pounding.errors import ArgumentError, ConvergenceError, finite_number, quote
 from pounding.simulation.plan import MonteCarloPlan
 from pounding.studies.fragility import check_intensities
@@ -105,8 +105,7 @@ def force_spectrum(case, period1, period_ratio: float | None = None, period2: fl
     (:func:`~pounding.case.scaling.with_fundamental_periods`). ``monte_carlo``: also Monte Carlo at each period,
     at least :data:`~pounding.defaults.SPECTRUM_MIN_RECORDS` records.
     """
-    from pounding.closed_form.force_distribution import force_distribution_of
-    from pounding.closed_form.pair import LinearizedPair
+    from pounding.closed_form.row import force_distribution_and_accuracy
 
     period1 = check_intensities(period1, "period1")
     periods2 = _periods_of_building_2(period1, period_ratio, period2)
@@ -117,9 +116,9 @@ def force_spectrum(case, period1, period_ratio: float | None = None, period2: fl
     with single_blas_thread():
         for t1, t2 in zip(period1, periods2):
             try:
-                pair = LinearizedPair.of(with_fundamental_periods(base, t1, t2))
-                distributions.append(force_distribution_of(pair))
-                accuracy.append(measured_range(pair))
+                distribution, measured = force_distribution_and_accuracy(with_fundamental_periods(base, t1, t2))
+                distributions.append(distribution)
+                accuracy.append(measured)
             except ConvergenceError as error:
                 raise ConvergenceError(f"at T1 = {t1:.4g} s, T2 = {t2:.4g} s: {error}") from None
     spectrum = ForceSpectrum(

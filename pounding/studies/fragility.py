@@ -17,9 +17,8 @@ from pounding import defaults
 from pounding.blas import single_blas_thread
 from pounding.case.case import Case, as_case
 from pounding.case.scaling import PeakGroundAcceleration
-from pounding.closed_form.force_distribution import force_distribution_of
-from pounding.closed_form.pair import LinearizedPair
-from pounding.closed_form.regimes import accuracy_band, measured_range
+from pounding.closed_form.regimes import accuracy_band
+from pounding.closed_form.row import force_distribution_and_accuracy
 from pounding.errors import ArgumentError, ConvergenceError, check_limit, finite_number, quote
 from pounding.simulation.plan import MonteCarloPlan
 from pounding.studies.monte_carlo_study import MonteCarloForces, check_plan_records, monte_carlo_forces_at
@@ -216,9 +215,9 @@ def fragility_curve(case, capacity: float, pga, monte_carlo: MonteCarloPlan | No
     with single_blas_thread():
         for value in pga:
             try:
-                pair = LinearizedPair.of(scaling.case_at(value))
-                distributions.append(force_distribution_of(pair))
-                accuracy.append(measured_range(pair))
+                distribution, measured = force_distribution_and_accuracy(scaling.case_at(value))
+                distributions.append(distribution)
+                accuracy.append(measured)
             except ConvergenceError as error:
                 raise ConvergenceError(f"at PGA {value / STANDARD_GRAVITY:.4g} g: {error}") from None
     probability = np.array([d.probability_exceeding(capacity) for d in distributions])
