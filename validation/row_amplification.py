@@ -3,12 +3,13 @@ reduced, as Anagnostopoulos (1988, "Pounding of buildings in series during earth
 Struct. Dyn. 16:443-456) found for SDOF structures in a row?
 
 The row: N one-storey (SDOF) buildings side by side, equal masses (5e5 kg), 5 % damping, equal gaps
-(1 cm) and equal contacts (Jankowski's law, 2.75e9 N/m^1.5, e = 0.65), under the Kanai-Tajimi records of
+(0, touching as in a continuous block, and 1 cm; the first row size also 2 cm) and equal contacts (Jankowski's law, 2.75e9 N/m^1.5, e = 0.65), under the Kanai-Tajimi records of
 firm soil (omega_g 15.6 rad/s, xi_g 0.6) with an expected PGA of 0.3 g, 15 s stationary. Buildings that
 are exactly alike never pound: under one ground motion they move as one, record for record (the first
 table shows it). So the buildings are alike but for their periods: each record draws every building's
 period log-uniformly within 0.5 s x exp(+-0.2) (0.41 to 0.61 s, about +-20 %), a new row per record
-(seeded), so that the answer is about a position in the row, not one arrangement of periods. The same
+(seeded), so that the answer is about a position in the row, not one arrangement of periods; the first row
+size also within exp(+-0.4) (0.34 to 0.75 s). The same
 record is integrated twice: with the contacts, and with the gaps set to 10 m (no contact).
 
 Each building's response is its peak displacement (relative to the ground) over the record: |x|, and for
@@ -16,7 +17,7 @@ the end buildings also outward (away from the row: -x for building 1, +x for bui
 amplification ratio of a building is the mean over the records of its peak with contacts over the mean of
 its peak without; its 95 % interval is the ratio estimator's (the delta method on the records' pairs,
 Student t). Elastic storeys, and mildly yielding ones (Bouc-Wen from a yield drift of 2 cm, post-yield
-ratio 0.1: about half the elastic buildings' mean peak of 4.3 cm). The per-contact tables give the mean
+ratio 0.1: about half the elastic buildings' mean peak of 4 cm). The per-contact tables give the mean
 F_max and its 95 % interval.
 
     python3 -m validation.row_amplification            # N = 5 and 3, 300 records a run, about 1.5 min on 2 cores
