@@ -46,3 +46,19 @@ def test_the_end_buildings_are_amplified_and_the_interior_ones_reduced():
     ratios = [r[0] for r in building_ratios(run)]
     assert min(ratios[0], ratios[-1]) > 1.0 > ratios[2]  # each end amplified, the middle building reduced
     assert min(ratios[0], ratios[-1]) > max(ratios[1:-1])
+
+
+def test_the_docs_row_example_loads():
+    """docs/rows.md's case file, as written: three buildings, the aligned floors expanded into two contacts."""
+    import re
+    import tomllib
+    from pathlib import Path
+
+    from pounding.case.case import case_from_dict
+
+    page = (Path(__file__).resolve().parent.parent / "docs" / "rows.md").read_text()
+    (block,) = re.findall(r"```toml\n(.*?)```", page, re.DOTALL)
+    case = case_from_dict(tomllib.loads(block))
+    assert len(case.buildings) == 3
+    assert [(c.between, c.levels, c.restitution) for c in case.contacts] == [((1, 2), (2, 2), 0.65), ((2, 3), (1, 1), 0.5),
+                                                                             ((2, 3), (2, 2), 0.5)]
