@@ -54,6 +54,7 @@ RUNS = {
     "record_synthesis": [dict(cases=1, factor_records=2, clough_penzien_records=4, design_records=4)],
     "residual_input": [dict(cases=1, records=2, trajectories=10)],
     "row_accuracy": [dict(cases=1, records=4)],
+    "row_amplification": [dict(buildings=(3,), records=4)],
     "separation_rules": [dict(cases=1, records=4)],
     "storey_accuracy": [dict(cases=2, records=4)],
     "suite_accuracy": [dict(records=3, suites=["Brune M5.5 R10 km, low-passed 10 Hz", "RDK strong drift, resampled 0.02 s"],
