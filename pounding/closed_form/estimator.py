@@ -19,6 +19,7 @@ import numpy as np
 
 from pounding import defaults
 from pounding.case.case import Case, as_case
+from pounding.blas import single_blas_thread
 from pounding.case.engineering import engineering_terms
 from pounding.closed_form.force_distribution import ForceDistribution, force_distribution, gap_for_capacity
 from pounding.closed_form.gap_aware import (
@@ -251,6 +252,12 @@ def estimate(
     """
     check_probability(target_probability)
     check_michaelov_n1(michaelov_n1)
+    with single_blas_thread():
+        return _estimate(case, target_probability, paper_variance, michaelov_n1)
+
+
+def _estimate(case, target_probability: float, paper_variance: str, michaelov_n1: float) -> Estimate | RowEstimate:
+    """:func:`estimate` on checked options."""
     if not isinstance(case, LinearizedPair) and len(as_case(case).contacts) > 1:
         return _row_estimate(as_case(case), target_probability, paper_variance, michaelov_n1)
     pair = _pair(case)
@@ -301,7 +308,7 @@ def estimate(
 
 def _row_estimate(case: Case, target_probability: float, paper_variance: str, michaelov_n1: float) -> RowEstimate:
     """Each contact's estimate on its pair of buildings, each building linearized once."""
-    contacts = tuple(estimate(pair, target_probability, paper_variance, michaelov_n1) for pair in contact_pairs(case))
+    contacts = tuple(_estimate(pair, target_probability, paper_variance, michaelov_n1) for pair in contact_pairs(case))
     distribution = largest_force_distribution([c.force_max_distribution for c in contacts])
     return RowEstimate(case, contacts, distribution, float(target_probability), row_measured_range(case),
                        row_measured_range(case, each_contact=True))

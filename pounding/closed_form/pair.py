@@ -84,6 +84,13 @@ class LinearizedPair:
         case = case.pair(0)  # the contact's two buildings: a row of them with one contact
         return cls(case, tuple(linearize_pair(case, **linearization)))
 
+    def for_contact(self, case: Case) -> LinearizedPair:
+        """The same two linearized buildings with ``case``'s contact (another pair of floors, gap or law): the
+        state space, its stationary covariance and its modes, which do not depend on the contact, are shared."""
+        other = LinearizedPair(case, self.buildings)
+        other.__dict__["state_space"] = self.state_space  # a cached_property's slot: computed once for the buildings
+        return other
+
     @property
     def floors(self) -> tuple[int, int]:
         """The contact floors, counted from 0 (= first floor) in each building."""

@@ -42,8 +42,14 @@ def contact_pairs(case: Case) -> tuple[LinearizedPair, ...]:
     """Each contact's two buildings as a :class:`~pounding.closed_form.pair.LinearizedPair`, in the case's order,
     each building linearized once (:func:`~pounding.closed_form.linearization.linearize_row`)."""
     buildings = linearize_row(case)
-    return tuple(LinearizedPair(case.pair(index), tuple(buildings[b - 1] for b in contact.between))
-                 for index, contact in enumerate(case.contacts))
+    first = {}  # the first pair of each two buildings: the others share its state space
+    pairs = []
+    for index, contact in enumerate(case.contacts):
+        if contact.between in first:
+            pairs.append(first[contact.between].for_contact(case.pair(index)))
+        else:
+            pairs.append(first.setdefault(contact.between, LinearizedPair(case.pair(index), tuple(buildings[b - 1] for b in contact.between))))
+    return tuple(pairs)
 
 
 def force_distribution_and_accuracy(case: Case) -> tuple[ForceDistribution, MeasuredRange]:
