@@ -15,7 +15,7 @@ from pounding.closed_form.estimator import estimate
 from pounding.closed_form.pair import LinearizedPair
 
 EXPENSIVE = ("linearize_pair", "pair_state_space", "residual_response", "time_varying_covariance",
-             "floor_response_and_receptance", "relative_displacement_psd", "impact_damping")
+             "floor_responses", "relative_displacement_psd", "impact_damping")
 
 
 @pytest.mark.parametrize("name", ["section5-T2-0.4", "section6-T2-0.4-nonstationary"])
@@ -31,8 +31,29 @@ def test_one_estimate_computes_each_quantity_once(monkeypatch, name):
 
         monkeypatch.setattr(pair_module, function, counted)
     estimate(load_case(name))
-    floors = 2  # one FRF and receptance per contact floor
-    assert counts == {**{function: 1 for function in EXPENSIVE}, "floor_response_and_receptance": floors}
+    assert counts == {**{function: 1 for function in EXPENSIVE}, "floor_responses": 2}  # every floor's, per building
+
+
+def test_a_row_linearizes_each_building_once_and_each_pair_of_buildings_once(monkeypatch):
+    """Contacts of one pair of buildings share its state space and floors' FRFs; each building is linearized once."""
+    import pounding.closed_form.linearization.iteration as iteration
+
+    from .test_rows import row
+
+    counts = collections.Counter()
+    for module, function in ((pair_module, "pair_state_space"), (pair_module, "floor_responses"), (iteration, "linearize")):
+        original = getattr(module, function)
+
+        @functools.wraps(original)
+        def counted(*args, _original=original, _name=function, **kwargs):
+            counts[_name] += 1
+            return _original(*args, **kwargs)
+
+        monkeypatch.setattr(module, function, counted)
+    case = row()  # three buildings; contacts 1-2 at one floor, 2-3 at two
+    result = estimate(case)
+    assert len(result.contacts) == 3
+    assert counts == {"linearize": 3, "pair_state_space": 2, "floor_responses": 4}
 
 
 def test_a_pair_reused_gives_the_estimate_of_its_case():

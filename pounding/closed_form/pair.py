@@ -29,7 +29,7 @@ from pounding.closed_form.response import (
     FloorStatistics,
     band_covariance,
     contact_output_matrix,
-    floor_response_and_receptance,
+    floor_responses,
     frequency_response,
     relative_displacement_psd,
     response_frequency,
@@ -86,9 +86,11 @@ class LinearizedPair:
 
     def for_contact(self, case: Case) -> LinearizedPair:
         """The same two linearized buildings with ``case``'s contact (another pair of floors, gap or law): the
-        state space, its stationary covariance and its modes, which do not depend on the contact, are shared."""
+        state space, its stationary covariance and its modes, and the floors' FRFs, which do not depend on the
+        contact, are shared."""
         other = LinearizedPair(case, self.buildings)
-        other.__dict__["state_space"] = self.state_space  # a cached_property's slot: computed once for the buildings
+        for shared in ("state_space", "floor_frfs"):  # cached_property slots: computed once for the buildings
+            other.__dict__[shared] = getattr(self, shared)
         return other
 
     @property
@@ -194,11 +196,17 @@ class LinearizedPair:
         return response_frequency(self.case, self.buildings, self.state_space, rtol)
 
     @cached_property
+    def floor_frfs(self) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+        """Each building's floors' FRFs and receptances on :func:`~pounding.closed_form.response.spectral_grid`
+        (:func:`~pounding.closed_form.response.floor_responses`), building 1 then 2: whatever floors meet."""
+        omega = spectral_grid()
+        return tuple(floor_responses(b, omega) for b in self.buildings)
+
+    @cached_property
     def contact_floor_frfs(self) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
         """Each contact floor's FRF per unit ground acceleration [s^2] and its
         receptance [m/N] on :func:`~pounding.closed_form.response.spectral_grid`, building 1 then 2."""
-        omega = spectral_grid()
-        return tuple(floor_response_and_receptance(b, omega, f) for b, f in zip(self.buildings, self.floors))
+        return tuple((frf[:, f], receptance[:, f, f]) for (frf, receptance), f in zip(self.floor_frfs, self.floors))
 
     @cached_property
     def relative_displacement_psd(self) -> np.ndarray:

@@ -33,7 +33,7 @@ __all__ = [
     "band_covariance",
     "FloorStatistics",
     "contact_output_matrix",
-    "floor_response_and_receptance",
+    "floor_responses",
     "frequency_response",
     "relative_displacement_psd",
     "response_frequency",
@@ -227,15 +227,15 @@ def frequency_response(linearized: LinearizedBuilding, omega) -> np.ndarray:
     return _floor_response(linearized, omega, -linearized.building.masses[:, None])[..., 0]
 
 
-def floor_response_and_receptance(linearized: LinearizedBuilding, omega, floor: int) -> tuple[np.ndarray, np.ndarray]:
-    """One floor's FRF per unit ground acceleration [s^2] (:func:`frequency_response`)
-    and its receptance [m/N], its displacement under a harmonic force of 1 N on
-    itself (``floor`` counted from 0 = first floor); both of shape omega.shape."""
-    loads = np.zeros((linearized.building.n_storeys, 2))
-    loads[:, 0] = -linearized.building.masses
-    loads[floor, 1] = 1.0
-    response = _floor_response(linearized, omega, loads)[..., floor, :]
-    return response[..., 0], response[..., 1]
+def floor_responses(linearized: LinearizedBuilding, omega) -> tuple[np.ndarray, np.ndarray]:
+    """Every floor's FRF per unit ground acceleration [s^2] (:func:`frequency_response`) and the receptances between
+    the floors [m/N] (column j: the floors' displacements under a harmonic force of 1 N on floor j, counted from 0),
+    from one factorization per frequency; shapes omega.shape + (floors,) and omega.shape + (floors, floors). A
+    floor's own receptance is the diagonal."""
+    building = linearized.building
+    loads = np.concatenate([-building.masses[:, None], np.eye(building.n_storeys)], axis=1)
+    response = _floor_response(linearized, omega, loads)
+    return response[..., 0], response[..., 1:]
 
 
 def _contact_frf(case, linearized, omega) -> np.ndarray:
