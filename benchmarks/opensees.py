@@ -4,6 +4,7 @@ For each case: `pounding export opensees` writes the model, OpenSees runs it
 (`python model.py`, a subprocess, as a user runs it) and `simulate` integrates
 the same records on one thread. Printed: each record's F_max both ways and
 their difference, the impacts both ways, the CPU seconds a record each way;
+for a case of several contacts, each contact's largest and mean difference;
 with --halve, OpenSees again at half the exported step and how far each F_max
 moved (the step is converged when under 0.1 %). Needs openseespy.
 
@@ -37,13 +38,24 @@ def run_model(script: Path, *options: str) -> dict:
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-def pounding_cpu_per_record(case, records: int, seed: int) -> tuple[np.ndarray, np.ndarray, float]:
-    """F_max [N], impacts and CPU seconds a record of simulate on one thread (after a warm-up)."""
+def pounding_cpu_per_record(case, records: int, seed: int):
+    """simulate's result and its CPU seconds a record on one thread (after a warm-up)."""
     settings = Settings(workers=1)
     simulate(case, records=1, seed=seed, settings=settings)
     start = time.process_time()
     result = simulate(case, records=records, seed=seed, settings=settings)
-    return result.force_max, result.impacts, (time.process_time() - start) / records
+    return result, (time.process_time() - start) / records
+
+
+def print_contacts(result, opensees: dict) -> None:
+    """Each contact's per-record |diff| of F_max, largest and mean over the records where it pounds, and its impacts."""
+    for peaks, theirs in zip(result.contacts, opensees["contacts"]):
+        pounded = peaks.force_max > 0
+        difference = 100 * np.abs(np.array(theirs["force_max"], dtype=float)[pounded] / peaks.force_max[pounded] - 1)
+        (left, right), (level_left, level_right) = peaks.contact.between, peaks.contact.levels
+        summary = f"max {np.max(difference):.3f} %, mean {np.mean(difference):.3f} %" if pounded.any() else "no pounding"
+        print(f"  contact buildings {left}-{right}, floors {level_left}/{level_right}: {summary} over {pounded.sum()} records; "
+              f"impacts {peaks.impacts.sum()} / {sum(theirs['impacts'])}")
 
 
 def main() -> None:
@@ -59,7 +71,8 @@ def main() -> None:
             written = export_opensees(case, folder, records=args.records, seed=args.seed)
             opensees = run_model(written.script)
             halved = run_model(written.script, "--step", repr(written.time_step / 2)) if args.halve else None
-        force, impacts, cpu = pounding_cpu_per_record(case, args.records, args.seed)
+        result, cpu = pounding_cpu_per_record(case, args.records, args.seed)
+        force, impacts = result.force_max, result.impacts
         theirs = np.array(opensees["force_max"], dtype=float)
         difference = 100 * (theirs / force - 1)
         print(f"\n{case.name}: {args.records} records, seed {args.seed}; OpenSees step {1e6 * written.time_step:.4g} us "
@@ -75,6 +88,8 @@ def main() -> None:
         pounded = force > 0
         print(f"per-record |diff| over {pounded.sum()} pounding records: max {np.max(np.abs(difference[pounded])):.3f} %, "
               f"mean {np.mean(np.abs(difference[pounded])):.3f} %; impacts {impacts.sum()} / {sum(opensees['impacts'])}")
+        if len(case.contacts) > 1:
+            print_contacts(result, opensees)
         print(f"CPU per record: pounding {1e3 * cpu:.2f} ms, OpenSees {np.mean(opensees['cpu_seconds']):.2f} s "
               f"({np.mean(opensees['cpu_seconds']) / cpu:.0f} times); fallbacks: {opensees['fallbacks'] or 'none'}")
 

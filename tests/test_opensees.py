@@ -1,17 +1,20 @@
 """The OpenSees bridge (issue 24): `pounding export opensees` writes a model that OpenSees runs on the
-records `pounding simulate` integrates, and the two agree.
+records `pounding simulate` integrates, and the two agree; a case of several contacts (issue 35) at each contact.
 
 Each case is exported, its model.py run as a user runs it (`python DIR/model.py`, a subprocess whose last
 line is one JSON object) and compared with `simulate` on the same records and seed: every record's F_max
 within 1 %. The models run two at a time; the command line runs in this process, its kernels loaded once.
 Marked `opensees` (`pytest -m opensees` selects them)."""
 
+import ast
+import dataclasses
 import importlib.util
 import json
 import math
 import subprocess
 import sys
 import textwrap
+import tomllib
 from concurrent.futures import ThreadPoolExecutor
 from types import SimpleNamespace
 
@@ -20,11 +23,14 @@ import pytest
 
 from pounding import load_case, simulate
 from pounding.cli.commands import main
+from pounding.errors import ArgumentError
 from pounding.export.opensees import export_opensees
 from pounding.hazard.accelerograms import Accelerogram, write_at2
 from pounding.hazard.excitation import ground_accelerations
 from pounding.presets import preset_text
 from pounding.units import STANDARD_GRAVITY
+
+from .test_rows import ROW
 
 pytestmark = pytest.mark.opensees
 
@@ -152,6 +158,42 @@ CASES = {
         restitution = 0.7
         """, 2),
 }
+# several contacts in one history (issue 35): three buildings in a row meeting at two floors, building 2 against 3 at
+# both their floors under Muthukumar & DesRoches' law (each contact its own law); two equal-height four-storey buildings
+# meeting at every floor
+CASES["row"] = (ROW.replace('levels = "aligned"\n', 'levels = "aligned"\nmodel = "hertzdamp"\n', 1), 1)
+CASES["four-storey-aligned"] = ("""
+        name = "four-storey aligned"
+        units = "SI"
+        [excitation]
+        spectrum = "kanai-tajimi"
+        G0 = 0.012
+        omega_g = 15.6
+        xi_g = 0.6
+        duration = 10.0
+        [[buildings]]
+        damping_ratio = 0.05
+        storeys = [
+          { mass = 3.0e5, stiffness = 2.0e8, hysteresis = { yield_drift = 0.015, post_yield_ratio = 0.1 } },
+          { mass = 3.0e5, stiffness = 1.8e8, hysteresis = { yield_drift = 0.015, post_yield_ratio = 0.1 } },
+          { mass = 3.0e5, stiffness = 1.5e8, hysteresis = { yield_drift = 0.015, post_yield_ratio = 0.1 } },
+          { mass = 2.5e5, stiffness = 1.2e8, hysteresis = { yield_drift = 0.015, post_yield_ratio = 0.1 } },
+        ]
+        [[buildings]]
+        damping_ratio = 0.04
+        storeys = [
+          { mass = 2.5e5, stiffness = 5.0e8 },
+          { mass = 2.5e5, stiffness = 4.5e8 },
+          { mass = 2.5e5, stiffness = 4.0e8 },
+          { mass = 2.0e5, stiffness = 3.0e8 },
+        ]
+        [[contacts]]
+        between = [1, 2]
+        levels = "aligned"
+        gap = 0.004
+        stiffness = 2.75e9
+        """, 1)
+SEVERAL = ("row", "four-storey-aligned")
 # elastic Hertz (Hertzdamp without damping) with the buildings touching at rest: OpenSees' impact materials
 # stop the process on a gap of 0, so the model writes -1e-12 m
 CASES["hertz-touching"] = (CASES["hertzdamp"][0].replace('"hertzdamp"', '"hertz-touching"', 1)
@@ -178,6 +220,11 @@ def _write_case(folder, name: str) -> str:
     path = folder / f"{name}.toml"
     path.write_text(textwrap.dedent(text))
     return str(path)
+
+
+def _write_case_text(name: str) -> dict:
+    """The case file's table of ``CASES[name]``."""
+    return tomllib.loads(textwrap.dedent(CASES[name][0]))
 
 
 @pytest.fixture(scope="module")
@@ -218,6 +265,24 @@ def test_the_impacts_are_counted_alike(compared, name):
     # a graze of micrometres may be seen by one integrator and not the other: one a record at most
     assert np.all(np.abs(np.array(opensees["impacts"]) - simulated.impacts) <= 1)
     assert opensees["records"] == [f"record {i} (seed {CASES[name][1]})" for i in range(RECORDS)]
+
+
+@needs_opensees
+@pytest.mark.parametrize("name", SEVERAL)
+def test_each_contacts_force_max_agrees_within_one_percent(compared, name):
+    """Issue 35: the model prints each contact's F_max, in the case's order, and each record's is within 1 % of simulate's
+    at every contact; the top-level F_max is the largest over them."""
+    simulated, opensees = compared[name]
+    assert [(tuple(c["between"]), tuple(c["levels"])) for c in opensees["contacts"]] == [
+        (peaks.contact.between, peaks.contact.levels) for peaks in simulated.contacts]
+    assert len(opensees["contacts"]) == {"row": 3, "four-storey-aligned": 4}[name]
+    for theirs, peaks in zip(opensees["contacts"], simulated.contacts):
+        assert np.all(peaks.force_max > 0), "each contact must pound in each record for the comparison to say something"
+        relative = np.array(theirs["force_max"]) / peaks.force_max - 1.0
+        assert np.all(np.abs(relative) < TOLERANCE), f"{peaks.contact.levels}: per-record differences {np.round(100 * relative, 3)} %"
+        assert np.all(np.abs(np.array(theirs["impacts"]) - peaks.impacts) <= 1)
+    assert opensees["force_max"] == [max(forces) for forces in zip(*(c["force_max"] for c in opensees["contacts"]))]
+    assert opensees["impacts"] == [sum(counts) for counts in zip(*(c["impacts"] for c in opensees["contacts"]))]
 
 
 @needs_opensees
@@ -334,6 +399,51 @@ def test_a_contact_law_opensees_lacks_is_refused(tmp_path, capsys):
     _refused(run, "contact.model")
     assert "linear" in run.stderr and "ViscoelasticGap" in run.stderr
     assert not (tmp_path / "m").exists(), "nothing is written for a case that cannot be exported"
+
+
+def test_a_row_writes_every_building_and_contact(tmp_path):
+    """The model holds the three buildings and the three contacts, in the case's order, each with its own law and the
+    reduced mass of its own floors; nothing of OpenSees is needed to write it."""
+    case = load_case(_write_case(tmp_path, "row"))
+    script = export_opensees(case, tmp_path / "m", records=1, seed=1).script
+    text = script.read_text()
+
+    def constant(name):
+        start = text.index(f"\n{name} = [") + len(name) + 4
+        return ast.literal_eval(text[start:text.index("\n]\n", start) + 2])
+
+    assert [len(storeys) for storeys in constant("BUILDINGS")] == [3, 2, 3]
+    contacts = constant("CONTACTS")
+    assert [(c["between"], c["levels"], c["law"]) for c in contacts] == [
+        ([1, 2], [2, 2], "jankowski"), ([2, 3], [1, 1], "hertzdamp"), ([2, 3], [2, 2], "hertzdamp")]
+    assert [c["reduced_mass"] for c in contacts] == pytest.approx([3e5 * 2e5 / 5e5, 2e5 * 3e5 / 5e5, 2e5 * 3e5 / 5e5])
+
+
+def test_the_step_is_bounded_by_the_shortest_impact_over_all_contacts():
+    """Each contact's impact at its own fastest approach and with its own floors' masses: the shortest decides."""
+    from pounding.export.opensees import STEPS_PER_IMPACT, analysis_time_step, impact_duration
+
+    case = load_case(_write_case_text("row"))
+    stiffer = dataclasses.replace(case, contacts=(case.contacts[0], dataclasses.replace(case.contacts[1], stiffness=1e12),
+                                                  case.contacts[2]))
+    durations = [impact_duration(c, stiffer.reduced_mass_of(c), 0.5) for c in stiffer.contacts]
+    assert durations[1] == min(durations) < durations[0] / 5
+    step, reason = analysis_time_step(stiffer, 0.005, [0.5, 0.5, 0.5])
+    assert step <= durations[1] / STEPS_PER_IMPACT and "buildings 2-3, floors 1/1" in reason
+    # a contact that never pounds in these records does not shorten the step
+    assert analysis_time_step(stiffer, 0.005, [0.5, 0.0, 0.5])[0] > step
+    with pytest.raises(ArgumentError, match="^approach_velocities: "):
+        analysis_time_step(stiffer, 0.005, [0.5])
+
+
+def test_a_contact_law_opensees_lacks_is_named_by_its_table_in_a_row(tmp_path, capsys):
+    """The key is the file's: the first [[contacts]] table gives two contacts (aligned), the second, linear, is contacts.2."""
+    text = CASES["row"][0].replace("levels = [2, 2]", 'levels = "aligned"').replace('model = "hertzdamp"', 'model = "linear"')
+    (tmp_path / "row.toml").write_text(text)
+    run = _pounding(capsys, "export", "opensees", str(tmp_path / "row.toml"), "--records", "1", "-o", str(tmp_path / "m"),
+                    check=False)
+    _refused(run, "contacts.2.model")
+    assert "linear" in run.stderr and not (tmp_path / "m").exists()
 
 
 @pytest.mark.parametrize("records", ["0", "-3", "two"])

@@ -9,7 +9,7 @@ import json
 from pounding import defaults
 from pounding.cli.arguments import record_count, study_size, whole_number_type
 
-__all__ = ["add_export", "export_command"]
+__all__ = ["add_export", "contact_keys", "export_command"]
 
 _EXAMPLES = """examples:
   pounding export opensees section5-T2-0.4 --records 20 --seed 1 -o opensees/
@@ -30,10 +30,11 @@ def add_export(commands) -> None:
     opensees = targets.add_parser(
         "opensees",
         help="an OpenSeesPy script and the records 'pounding simulate' integrates",
-        description="Write DIR/model.py, an OpenSeesPy model of the case (a zeroLength element per storey with the "
-        "BoucWen material and the storey's dashpot, the impact material between the floors that meet), and DIR/records/, "
-        "the ground accelerations 'pounding simulate CASE --records N --seed S' integrates. 'python DIR/model.py' runs "
-        "each record and prints one JSON object on its last line: force_max [N] and impacts, one per record.",
+        description="Write DIR/model.py, an OpenSeesPy model of the case (every building, a zeroLength element per storey "
+        "with the BoucWen material and the storey's dashpot; every contact, an impact element between the floors that meet), "
+        "and DIR/records/, the ground accelerations 'pounding simulate CASE --records N --seed S' integrates. "
+        "'python DIR/model.py' runs each record and prints one JSON object on its last line: force_max [N] and impacts, "
+        "one per record, the largest over all contacts, and contacts: each contact's, in the case's order.",
         epilog=_EXAMPLES,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
@@ -45,13 +46,34 @@ def add_export(commands) -> None:
     opensees.add_argument("--json", action="store_true", help="print one JSON object naming what was written")
 
 
+def contact_keys(source: str, case) -> tuple[str, ...]:
+    """The key the case file ``source`` (a preset name or a TOML file, loaded as ``case``) gives each contact of
+    ``case``, in its order: ``contact``, or ``contacts.i`` for the i-th ``[[contacts]]`` table (a table of
+    ``levels = "aligned"`` gives every floor the buildings share, and each of them its key)."""
+    import tomllib
+
+    from pounding.case.case import ALIGNED, read_case_file
+    from pounding.presets import preset_text
+
+    text = preset_text(source)
+    data = tomllib.loads(text) if text is not None else read_case_file(source)
+    if "contacts" not in data:
+        return ("contact",)
+    keys = []
+    for i, table in enumerate(data["contacts"], start=1):
+        aligned = table.get("levels") == ALIGNED
+        shared = min(case.buildings[b - 1].n_storeys for b in table.get("between", [1, 2])) if aligned else 1
+        keys += [f"contacts.{i}"] * shared
+    return tuple(keys)
+
+
 def export_command(args) -> int:
     """``pounding export opensees``: write the model, then say what was written and how to run it."""
     from pounding.case.case import load_case
     from pounding.export.opensees import check_exportable, export_opensees
 
     case = load_case(args.case)
-    check_exportable(case)
+    check_exportable(case, contact_keys(args.case, case))
     records, seed = study_size(case, args, "written")
     written = export_opensees(case, args.output, records=records, seed=seed, field="--output")
     if args.json:

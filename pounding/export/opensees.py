@@ -3,8 +3,10 @@
 :func:`export_opensees` writes ``model.py`` and the ground-acceleration
 records it runs: exactly those :func:`~pounding.simulation.monte_carlo.simulate`
 integrates for the same records and seed (synthetic, or the case's recorded
-motions as scaled). ``python model.py`` runs each through OpenSees and prints
-F_max and the impacts of each, as JSON on its last line. The model's code is
+motions as scaled). Every building of the case is in the model, and every
+contact is an impact element of its own, all in one analysis. ``python model.py``
+runs each record through OpenSees and prints F_max and the impacts of each, over
+all contacts and at each contact, as JSON on its last line. The model's code is
 :mod:`pounding.export.opensees_script`; this module writes the case's numbers before
 it and chooses the analysis step (:func:`analysis_time_step`).
 
@@ -24,8 +26,8 @@ from pathlib import Path
 import numpy as np
 
 from pounding import __version__, defaults
-from pounding.case.case import Case
-from pounding.errors import CaseError, quote
+from pounding.case.case import Case, contact_label
+from pounding.errors import ArgumentError, CaseError, quote
 from pounding.export.opensees_script import CONTACT_MATERIALS
 from pounding.mechanics.contact import Contact, hertz_peak_penetration
 from pounding.output import check_folder, write_atomic
@@ -55,16 +57,21 @@ HERTZ_DURATION_FACTOR = 2.9432
 _IMPORTS_MARKER = "# --- model.py: imports"
 _CODE_MARKER = "# --- model.py: the OpenSeesPy model"
 _LACKING = {
-    "linear": "its ViscoelasticGap pulls at an impact's end, pounding's law never does (docs/opensees.md)",
+    "linear": "ViscoelasticGap pulls as an impact ends, pounding's law never does (docs/opensees.md)",
 }
 
 
-def check_exportable(case: Case) -> None:
-    """:class:`CaseError` naming ``contact.model`` when OpenSees has no material for the case's contact law."""
-    model = case.contact.model
-    if model not in CONTACT_MATERIALS:
-        reason = _LACKING.get(model, "OpenSees has no material for it")
-        raise CaseError("contact.model", f"{quote(model)} has no OpenSees equivalent: {reason}; use {', '.join(CONTACT_MATERIALS)}")
+def check_exportable(case: Case, keys: tuple[str, ...] | None = None) -> None:
+    """:class:`CaseError` naming the first contact whose law OpenSees has no material for: ``KEY.model``, ``KEY``
+    the contact's key in ``keys`` (one a contact, in the case's order, as the case file names them: see
+    :func:`pounding.cli.export.contact_keys`), by default ``contact`` for a case of one contact and
+    ``contacts.i`` (i from 1, the case's order) for several."""
+    if keys is None:
+        keys = ("contact",) if len(case.contacts) == 1 else tuple(f"contacts.{i}" for i in range(1, len(case.contacts) + 1))
+    for key, contact in zip(keys, case.contacts):
+        if contact.model not in CONTACT_MATERIALS:
+            reason = _LACKING.get(contact.model, "OpenSees has no material for it")
+            raise CaseError(f"{key}.model", f"{quote(contact.model)} has no OpenSees equivalent: {reason}; use {', '.join(CONTACT_MATERIALS)}")
 
 
 def impact_duration(contact: Contact, reduced_mass: float, approach_velocity: float) -> float:
@@ -75,18 +82,27 @@ def impact_duration(contact: Contact, reduced_mass: float, approach_velocity: fl
     return HERTZ_DURATION_FACTOR * hertz_peak_penetration(approach_velocity, contact.stiffness, reduced_mass) / approach_velocity
 
 
-def analysis_time_step(case: Case, record_step: float, approach_velocity_max: float) -> tuple[float, str]:
-    """The OpenSees analysis step [s] and why: ``record_step`` / 2^k, the largest at most the
-    shortest impact over :data:`STEPS_PER_IMPACT` (the impact at ``approach_velocity_max`` [m/s], the
-    fastest of the records; 0 when none pounds) and the shortest natural period over :data:`PERIOD_STEPS`."""
+def analysis_time_step(case: Case, record_step: float, approach_velocities) -> tuple[float, str]:
+    """The OpenSees analysis step [s] and why: ``record_step`` / 2^k, the largest at most the shortest impact over
+    all contacts over :data:`STEPS_PER_IMPACT` and the shortest natural period over :data:`PERIOD_STEPS`.
+
+    ``approach_velocities`` holds, for each contact in the case's order, its fastest approach over the records
+    [m/s] (0 where it never pounds); each contact's impact is taken at its own fastest approach, with the reduced
+    mass of its own two floors. A single number stands for a case of one contact."""
+    velocities = np.atleast_1d(np.asarray(approach_velocities, dtype=float))
+    if velocities.shape != (len(case.contacts),):
+        raise ArgumentError("approach_velocities", f"must hold one velocity per contact ({len(case.contacts)}), got {velocities.size}")
     period = min(float(building.periods[-1]) for building in case.buildings)
     bound, reason = period / PERIOD_STEPS, f"the shortest natural period ({period:.4g} s) over {PERIOD_STEPS}"
-    if approach_velocity_max > 0.0:
-        duration = impact_duration(case.contact, case.reduced_mass, approach_velocity_max)
+    for contact, velocity in zip(case.contacts, velocities):
+        if not velocity > 0.0:
+            continue
+        duration = impact_duration(contact, case.reduced_mass_of(contact), float(velocity))
         if duration / STEPS_PER_IMPACT < bound:
             bound = duration / STEPS_PER_IMPACT
-            reason = (f"the shortest impact of these records ({1e3 * duration:.3g} ms, undamped, at the fastest approach, "
-                      f"{approach_velocity_max:.3g} m/s) over {STEPS_PER_IMPACT}")
+            where = f" ({contact_label(contact)})" if len(case.contacts) > 1 else ""
+            reason = (f"the shortest impact of these records{where} ({1e3 * duration:.3g} ms, undamped, at its fastest approach, "
+                      f"{velocity:.3g} m/s) over {STEPS_PER_IMPACT}")
     halvings = max(0, math.ceil(math.log2(record_step / bound) - 1e-12))
     return record_step / 2**halvings, f"the record step {record_step:g} s / 2^{halvings}, at most {reason}"
 
@@ -145,7 +161,7 @@ def export_opensees(case: Case, directory, records: int, seed: int = defaults.SE
     Raises
     ------
     CaseError
-        A contact law OpenSees has no material for (naming ``contact.model``).
+        A contact law OpenSees has no material for (naming ``contact.model`` or ``contacts.i.model``).
     ArgumentError
         A bad record count, or a file where the folder should be (naming ``field``).
     OSError
@@ -171,7 +187,8 @@ def export_opensees(case: Case, directory, records: int, seed: int = defaults.SE
         files.append(write_atomic(folder / relative, text, field, make_parents=True))
         entries.append({"file": relative, "time_step": record_step, "samples": accelerations.shape[1], "name": name})
     record_step = min(entry["time_step"] for entry in entries)
-    time_step, reason = analysis_time_step(case, record_step, float(np.max(study.impact_velocity_max)))
+    velocities = [float(np.max(peaks.impact_velocity_max)) for peaks in study.contacts]
+    time_step, reason = analysis_time_step(case, record_step, velocities)
     script = model_script(case, entries, time_step, reason, records, seed)
     path = write_atomic(folder / "model.py", script, field)
     return OpenSeesExport(path, tuple(files), time_step, reason)
@@ -195,21 +212,27 @@ def _storey_lines(case: Case) -> list[str]:
     return lines
 
 
+_DAMPING = {"jankowski": "xi of Eq. 5 from the restitution", "hertzdamp": "3 (1 - e^2) / 4 from the restitution",
+            "hertz": "none: elastic"}
+
+
 def _contact_lines(case: Case) -> list[str]:
-    contact = case.contact
-    damping = {"jankowski": "xi of Eq. 5 from the restitution", "hertzdamp": "3 (1 - e^2) / 4 from the restitution",
-               "hertz": "none: elastic"}[contact.model]
-    return [
-        "CONTACT = {",
-        f'    "law": "{contact.model}",  # {contact.law.reference}; OpenSees: {CONTACT_MATERIALS[contact.model]}',
-        f'    "levels": {contact.levels!r},  # the floor of building 1 and the floor of building 2 that meet',
-        f'    "gap": {_number(contact.gap)},  # [m] at rest',
-        f'    "stiffness": {_number(contact.stiffness)},  # beta [N/m^1.5]',
-        f'    "restitution": {_number(contact.restitution)},  # e, Eq. 6 [-]',
-        f'    "damping": {_number(contact.damping_ratio())},  # {damping} [-]',
-        f'    "reduced_mass": {_number(case.reduced_mass)},  # m1 m2 / (m1 + m2) of the floors that meet [kg]',
-        "}",
-    ]
+    lines = ["CONTACTS = ["]
+    for number, contact in enumerate(case.contacts, start=1):
+        lines += [
+            f"    {{  # contact {number}: {contact_label(contact)}",
+            f'        "between": {list(contact.between)!r},  # the two neighbouring buildings, left to right',
+            f'        "levels": {list(contact.levels)!r},  # the floor of the left building and the floor of the right one that meet',
+            f'        "law": "{contact.model}",  # {contact.law.reference}; OpenSees: {CONTACT_MATERIALS[contact.model]}',
+            f'        "gap": {_number(contact.gap)},  # [m] at rest',
+            f'        "stiffness": {_number(contact.stiffness)},  # beta [N/m^1.5]',
+            f'        "restitution": {_number(contact.restitution)},  # e, Eq. 6 [-]',
+            f'        "damping": {_number(contact.damping_ratio())},  # {_DAMPING[contact.model]} [-]',
+            f'        "reduced_mass": {_number(case.reduced_mass_of(contact))},  # m1 m2 / (m1 + m2) of the floors that meet [kg]',
+            "    },",
+        ]
+    lines.append("]")
+    return lines
 
 
 def model_script(case: Case, records: list[dict], time_step: float, reason: str, count: int, seed: int) -> str:
@@ -226,7 +249,8 @@ def model_script(case: Case, records: list[dict], time_step: float, reason: str,
         "integrates the same records (records/: the ground acceleration [m/s^2], one sample a line, from t = 0).",
         "",
         "    python model.py                 each record: a line, then one JSON object on the last line:",
-        "                                    force_max [N] and impacts, one per record, and the fallbacks used",
+        "                                    force_max [N] and impacts, one per record, over all contacts and",
+        "                                    at each contact (contacts), and the fallbacks used",
         "    python model.py --check-step    also the first record at half the step: how far F_max moves",
         "",
         "Needs openseespy (pip install openseespy). Units: SI (m, kg, s, N). The equation numbers are those of",
@@ -242,7 +266,8 @@ def model_script(case: Case, records: list[dict], time_step: float, reason: str,
         "# law (Eq. 2, 36): alpha, A [-], beta, gamma [1/m^n], n [-]; the storey's dashpot c [N s/m].",
         *_storey_lines(case),
         "",
-        "# The impact element between the floors that meet (Eq. 3-6, 10); delta = x1 - x2 - gap is the penetration.",
+        "# The contacts, in the case's order: an impact element each between the floors that meet (Eq. 3-6, 10);",
+        "# delta = x_left - x_right - gap is the penetration.",
         *_contact_lines(case),
         "",
         f"# Analysis step [s]: {reason}.",

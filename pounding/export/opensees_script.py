@@ -3,7 +3,7 @@
 The two parts below the marker lines are copied, as they are, into every
 ``model.py`` that :mod:`pounding.export.opensees` writes: the imports at its
 top, the model's code after the case's data (``CASE_NAME``, ``BUILDINGS``,
-``CONTACT``, ``TIME_STEP``, ``RECORDS``, which the code reads). It imports nothing
+``CONTACTS``, ``TIME_STEP``, ``RECORDS``, which the code reads). It imports nothing
 from ``pounding`` and only the standard library and ``openseespy``, so that
 the model runs where pounding is not installed. Importing this module does
 not import ``openseespy``: the exporter reads :data:`CONTACT_MATERIALS` from it.
@@ -20,7 +20,9 @@ import sys
 import time
 
 # --- model.py: the OpenSeesPy model --------------------------------------------------------------------------------
-# Units: SI throughout (m, kg, s, N). Node tags: 1000 b + f is floor f of building b (f = 0: its ground).
+# Units: SI throughout (m, kg, s, N). Node tags: 1000 b + f is floor f of building b (f = 0: its ground), and
+# so is the tag of the storey element below that floor; contact c (from 1, the case's order) is element and
+# material CONTACT_TAGS + c.
 
 CONTACT_MATERIALS = {"jankowski": "JankowskiImpact", "hertzdamp": "Hertzdamp", "hertz": "Hertzdamp"}
 """The OpenSees uniaxialMaterial standing for each of pounding's contact laws."""
@@ -38,7 +40,8 @@ FALLBACK_ITERATIONS = 200
 """Iterations each fallback algorithm is given."""
 MOST_STEP_CUTS = 8
 """A step still failing after this many halvings (1/256 of it) fails the record."""
-CONTACT_ELEMENT = 1
+CONTACT_TAGS = 10000
+"""Contact c's element and material are tagged CONTACT_TAGS + c: above every floor's and storey's tag (at most 8 buildings)."""
 
 
 def import_opensees():
@@ -56,12 +59,12 @@ def import_opensees():
 
 
 def floor_node(building, floor):
-    """Tag of floor ``floor`` (0: the ground) of building ``building`` (1 or 2)."""
+    """Tag of floor ``floor`` (0: the ground) of building ``building`` (from 1, left to right)."""
     return 1000 * building + floor
 
 
 def build_model(ops):
-    """Both buildings and the impact element, from BUILDINGS and CONTACT."""
+    """Every building and an impact element for every contact, from BUILDINGS and CONTACTS."""
     ops.wipe()
     ops.model("basic", "-ndm", 1, "-ndf", 1)
     material = 100
@@ -84,29 +87,37 @@ def build_model(ops):
             ops.element("zeroLength", floor_node(building, floor), floor_node(building, floor - 1),
                         floor_node(building, floor), "-mat", material, material + 1, "-dir", 1, 1)
             material += 2
-    contact_material(ops, 1)
-    # The impact element between the two floors that meet (Eq. 10): node i is building 1's floor, node j
-    # building 2's, so the element's strain u_j - u_i = x2 - x1 = -(delta + gap), negative in contact.
-    ops.element("zeroLength", CONTACT_ELEMENT, floor_node(1, CONTACT["levels"][0]), floor_node(2, CONTACT["levels"][1]),
-                "-mat", 1, "-dir", 1)
+    for number, contact in enumerate(CONTACTS, start=1):
+        # Each contact is its own impact element between the two floors that meet (Eq. 10), with its own
+        # material (gap, law, stiffness, reduced mass): node i is the left building's floor, node j the right
+        # one's, so the element's strain u_j - u_i = x_right - x_left = -(delta + gap), negative in contact.
+        # All of them act in the one analysis: an impact at one floor moves the others.
+        contact_material(ops, CONTACT_TAGS + number, contact)
+        ops.element("zeroLength", CONTACT_TAGS + number, *contact_nodes(contact), "-mat", CONTACT_TAGS + number, "-dir", 1)
 
 
-def contact_material(ops, tag):
-    """The impact material: compression-only, contact when the strain u_j - u_i falls below its gap,
-    which must be negative (a gap >= 0 makes these materials stop the process)."""
-    gap = -max(CONTACT["gap"], GAP_AT_TOUCH)
-    law = CONTACT["law"]
+def contact_nodes(contact):
+    """The tags of the contact's left and right floors."""
+    (left, right), (level_left, level_right) = contact["between"], contact["levels"]
+    return floor_node(left, level_left), floor_node(right, level_right)
+
+
+def contact_material(ops, tag, contact):
+    """The contact's impact material: compression-only, contact when the strain u_j - u_i falls below its
+    gap, which must be negative (a gap >= 0 makes these materials stop the process)."""
+    gap = -max(contact["gap"], GAP_AT_TOUCH)
+    law = contact["law"]
     if law == "jankowski":
         # Eq. 3-5: F = beta delta^1.5 + c delta' while approaching (delta' > 0), beta delta^1.5 while
-        # restoring, c = 2 xi sqrt(beta sqrt(delta) m1 m2 / (m1 + m2)), xi from the restitution (Eq. 5).
-        # JankowskiImpact: Kh, xi, mEff, gap, n.
-        ops.uniaxialMaterial("JankowskiImpact", tag, CONTACT["stiffness"], CONTACT["damping"],
-                             CONTACT["reduced_mass"], gap, 1.5)
+        # restoring, c = 2 xi sqrt(beta sqrt(delta) m1 m2 / (m1 + m2)), xi from the restitution (Eq. 5),
+        # m1 and m2 the masses of this contact's two floors. JankowskiImpact: Kh, xi, mEff, gap, n.
+        ops.uniaxialMaterial("JankowskiImpact", tag, contact["stiffness"], contact["damping"],
+                             contact["reduced_mass"], gap, 1.5)
     elif law in ("hertzdamp", "hertz"):
         # Muthukumar & DesRoches (2006): F = beta delta^1.5 (1 + 3 (1 - e^2) / 4 delta' / v0), v0 the
         # approach velocity as the impact begins (OpenSees takes it at the end of the impact's first step);
         # Hertz, elastic, is the same with 0 for 3 (1 - e^2) / 4. Hertzdamp: Kh, xiNorm, gap, n.
-        ops.uniaxialMaterial("Hertzdamp", tag, CONTACT["stiffness"], CONTACT["damping"], gap, 1.5)
+        ops.uniaxialMaterial("Hertzdamp", tag, contact["stiffness"], contact["damping"], gap, 1.5)
     else:
         raise SystemExit(f"model.py: OpenSees has no material for the contact law {law!r}")
 
@@ -132,27 +143,28 @@ def record_path(record):
 
 
 class Watch:
-    """The contact force and the impacts over a record's committed steps."""
+    """Each contact's largest force and its impacts over a record's committed steps (lists in CONTACTS' order)."""
 
     def __init__(self, ops):
         self.ops = ops
-        self.force_max = 0.0
-        self.impacts = 0
-        self.penetration = -CONTACT["gap"]
-        self.node_1 = floor_node(1, CONTACT["levels"][0])
-        self.node_2 = floor_node(2, CONTACT["levels"][1])
+        self.nodes = [contact_nodes(contact) for contact in CONTACTS]
+        self.force_max = [0.0] * len(CONTACTS)
+        self.impacts = [0] * len(CONTACTS)
+        self.penetration = [-contact["gap"] for contact in CONTACTS]
 
     def observe(self):
-        """After a committed step: the penetration delta = x1 - x2 - gap (an impact begins where it turns
-        positive, as pounding counts them) and the contact force, the material's stress negated."""
+        """After a committed step, at each contact: the penetration delta = x_left - x_right - gap (an impact
+        begins where it turns positive, as pounding counts them) and the contact force, the material's stress
+        negated."""
         ops = self.ops
-        penetration = ops.nodeDisp(self.node_1, 1) - ops.nodeDisp(self.node_2, 1) - CONTACT["gap"]
-        if penetration > 0.0:
-            if self.penetration <= 0.0:
-                self.impacts += 1
-            force = -ops.eleResponse(CONTACT_ELEMENT, "material", 1, "stress")[0]
-            self.force_max = max(self.force_max, force)
-        self.penetration = penetration
+        for index, (contact, (left, right)) in enumerate(zip(CONTACTS, self.nodes)):
+            penetration = ops.nodeDisp(left, 1) - ops.nodeDisp(right, 1) - contact["gap"]
+            if penetration > 0.0:
+                if self.penetration[index] <= 0.0:
+                    self.impacts[index] += 1
+                force = -ops.eleResponse(CONTACT_TAGS + index + 1, "material", 1, "stress")[0]
+                self.force_max[index] = max(self.force_max[index], force)
+            self.penetration[index] = penetration
 
 
 def advance(ops, step, watch, tally, cuts=0):
@@ -178,7 +190,8 @@ def advance(ops, step, watch, tally, cuts=0):
 
 
 def run_record(ops, record, step):
-    """F_max [N], the impacts, the CPU time [s], the fallbacks used and whether it completed."""
+    """F_max [N] and the impacts, over all contacts and at each (``contacts``: lists in CONTACTS' order), the CPU
+    time [s], the fallbacks used and whether it completed."""
     start = time.process_time()
     build_model(ops)
     set_up_analysis(ops, record)
@@ -186,8 +199,23 @@ def run_record(ops, record, step):
     steps = max(1, math.ceil(duration / step - 1e-9))
     watch, tally = Watch(ops), {}
     completed = all(advance(ops, duration / steps, watch, tally) for _ in range(steps))
-    return {"force_max": watch.force_max, "impacts": watch.impacts, "cpu_seconds": time.process_time() - start,
+    return {"force_max": max(watch.force_max), "impacts": sum(watch.impacts), "cpu_seconds": time.process_time() - start,
+            "contacts": {"force_max": watch.force_max, "impacts": watch.impacts},
             "fallbacks": tally, "completed": completed, "time": ops.getTime()}
+
+
+def describe_contact(contact):
+    """A contact in words, as pounding writes it: "buildings 1-2, floors 3/2"."""
+    (left, right), (level_left, level_right) = contact["between"], contact["levels"]
+    return f"buildings {left}-{right}, floors {level_left}/{level_right}"
+
+
+def governing(result):
+    """Where a record's F_max is, when there are several contacts: ", at buildings 1-2, floors 3/2"."""
+    forces = result["contacts"]["force_max"]
+    if len(CONTACTS) == 1 or max(forces) <= 0.0:
+        return ""
+    return f" at {describe_contact(CONTACTS[forces.index(max(forces))])}"
 
 
 def arguments():
@@ -216,7 +244,7 @@ def main():
             tally[name] = tally.get(name, 0) + count
         used = ", ".join(f"{name} {count}" for name, count in sorted(result["fallbacks"].items())) or "none"
         status = "" if result["completed"] else f"  FAILED at t = {result['time']:.4f} s"
-        print(f"{record['name']}: F_max {result['force_max'] / 1e3:.3f} kN, {result['impacts']} impacts, "
+        print(f"{record['name']}: F_max {result['force_max'] / 1e3:.3f} kN{governing(result)}, {result['impacts']} impacts, "
               f"{result['cpu_seconds']:.2f} s CPU, fallbacks: {used}{status}", flush=True)
         results.append(result)
         if not result["completed"]:
@@ -226,6 +254,10 @@ def main():
         "records": [record["name"] for record in RECORDS[:options.records]],
         "force_max": [result["force_max"] if result["completed"] else None for result in results],
         "impacts": [result["impacts"] for result in results],
+        "contacts": [{"between": contact["between"], "levels": contact["levels"],
+                      "force_max": [result["contacts"]["force_max"][index] if result["completed"] else None for result in results],
+                      "impacts": [result["contacts"]["impacts"][index] for result in results]}
+                     for index, contact in enumerate(CONTACTS)],
         "cpu_seconds": [result["cpu_seconds"] for result in results],
         "time_step": options.step,
         "fallbacks": tally,
