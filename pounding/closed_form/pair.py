@@ -124,7 +124,7 @@ class LinearizedPair:
             return ContactResponse(self.case.contact.levels, self._lyapunov_covariance, "lyapunov")
         cutoff = self.case.excitation.cutoff_frequency
         if self.cutoff_shares[5] > 0.5:  # most of sigma_V^2 is above: the part below, directly
-            covariance = band_covariance(self.case, self.buildings, spectral_grid()[0], cutoff)
+            covariance = band_covariance(self.case, self.buildings, spectral_grid()[0], cutoff, self.floor_frfs)
         else:
             covariance = self._lyapunov_covariance - self._above_cutoff
         return ContactResponse(self.case.contact.levels, covariance, "lyapunov, cut at the records' cutoff")
@@ -138,7 +138,7 @@ class LinearizedPair:
     def _above_cutoff(self) -> np.ndarray:
         """The outputs' covariance carried by frequencies above the records' cutoff (0 beyond the spectral grid)."""
         cutoff, top = self.case.excitation.cutoff_frequency, spectral_grid()[-1]
-        return band_covariance(self.case, self.buildings, cutoff, top) if cutoff < top else np.zeros((6, 6))
+        return band_covariance(self.case, self.buildings, cutoff, top, self.floor_frfs) if cutoff < top else np.zeros((6, 6))
 
     @cached_property
     def cutoff_shares(self) -> np.ndarray:

@@ -238,23 +238,35 @@ def floor_responses(linearized: LinearizedBuilding, omega) -> tuple[np.ndarray, 
     return response[..., 0], response[..., 1:]
 
 
-def _contact_frf(case, linearized, omega) -> np.ndarray:
-    """FRFs of the OUTPUTS per unit ground acceleration, shape omega.shape + (6,)."""
-    f1, f2 = (level - 1 for level in case.contact.levels)
-    h1 = frequency_response(linearized[0], omega)[..., f1]
-    h2 = frequency_response(linearized[1], omega)[..., f2]
+def _outputs_frf(h1: np.ndarray, h2: np.ndarray, omega) -> np.ndarray:
+    """FRFs of the OUTPUTS from the contact floors' displacement FRFs, shape omega.shape + (6,)."""
     iw = 1j * np.asarray(omega, dtype=float)
     return np.stack([h1, h2, iw * h1, iw * h2, iw**2 * h1, iw**2 * h2], axis=-1)
 
 
-def band_covariance(case, linearized, low: float, high: float) -> np.ndarray:
+def _contact_frf(case, linearized, omega) -> np.ndarray:
+    """FRFs of the OUTPUTS per unit ground acceleration, shape omega.shape + (6,)."""
+    f1, f2 = (level - 1 for level in case.contact.levels)
+    return _outputs_frf(frequency_response(linearized[0], omega)[..., f1], frequency_response(linearized[1], omega)[..., f2], omega)
+
+
+def band_covariance(case, linearized, low: float, high: float, floor_frfs=None) -> np.ndarray:
     """Covariance of :data:`OUTPUTS` carried by the ground motion's frequencies from ``low`` to ``high``
     [rad/s], 2 int Re(H_i conj(H_j)) S_g d omega by the trapezoid rule on the points of
     :func:`spectral_grid` between them and the two ends, shape (6, 6) (SI): the part of the stationary
-    covariance a band of the spectrum makes (the records' cutoff, :class:`~pounding.closed_form.pair.LinearizedPair`)."""
+    covariance a band of the spectrum makes (the records' cutoff, :class:`~pounding.closed_form.pair.LinearizedPair`).
+    ``floor_frfs``: both buildings' :func:`floor_responses` on :func:`spectral_grid`, whose points inside the band
+    are then not solved again."""
     grid = spectral_grid()
-    omega = np.unique(np.concatenate([[low, high], grid[(grid > low) & (grid < high)]]))
-    frf = _contact_frf(case, linearized, omega)
+    inside = (grid > low) & (grid < high)
+    omega = np.concatenate([[low], grid[inside], [high]])
+    if floor_frfs is None:
+        frf = _contact_frf(case, linearized, omega)
+    else:
+        f1, f2 = (level - 1 for level in case.contact.levels)
+        ends = _contact_frf(case, linearized, omega[[0, -1]])
+        middle = _outputs_frf(floor_frfs[0][0][inside, f1], floor_frfs[1][0][inside, f2], grid[inside])
+        frf = np.concatenate([ends[:1], middle, ends[1:]])
     density = case.excitation.spectrum.psd(omega) * trapezoid_weights(omega)
     return 2.0 * np.real(np.einsum("k,ki,kj->ij", density, frf, frf.conj()))
 
