@@ -316,3 +316,28 @@ def test_a_cases_kind_and_its_measured_accuracy():
     assert "rows of three buildings" in result.measured_accuracy
     assert all(len(w) <= 200 for w in result.warnings)
     assert result.to_dict()["contacts"][0]["measured_accuracy"].startswith("Measured")
+
+
+def test_fragility_spectrum_and_sweeps_take_a_case_of_several_contacts():
+    """Curves over an intensity or a period, and a sweep's point, give the row's largest force as estimate does."""
+    from pounding import estimate
+    from pounding.case.scaling import PeakGroundAcceleration, with_fundamental_periods
+    from pounding.studies.force_spectrum import force_spectrum
+    from pounding.studies.fragility import fragility_curve
+    from pounding.studies.sweeps.work import point_estimate
+
+    case = row()
+    pga = np.array([1.0, 3.0])
+    curve = fragility_curve(case, 2.0e6, pga)
+    for value, probability in zip(pga, curve.probability):
+        at = estimate(PeakGroundAcceleration(case).case_at(value))
+        assert probability == pytest.approx(at.probability_exceeding(2.0e6), rel=1e-9)
+        assert len(at.contacts) == 3
+    assert curve.accuracy[0].regime == "three in a row"
+    spectrum = force_spectrum(case, [0.4, 0.6], period_ratio=0.7)
+    at = estimate(with_fundamental_periods(case, 0.6, 0.42))
+    assert spectrum.force_mean[1] == pytest.approx(at.force_expected, rel=1e-9)
+    point = point_estimate(tomllib.loads(ROW))
+    whole = estimate(case)
+    assert point["force"] == pytest.approx(whole.force_expected, rel=1e-12) and point["paper_force"] is None
+    assert point["required_gap"] == pytest.approx(max(c.required_gap for c in whole.contacts), rel=1e-12)

@@ -70,7 +70,9 @@ def point_estimate(data: dict, adjustment: dict | None = None) -> dict:
     """The closed-form figures of one point (``pounding.closed_form.estimator.estimate``), JSON-ready, SI.
 
     An estimate that cannot be made (e.g. a record too short for Davenport's
-    peak factor) gives None figures and its reason in ``warnings``.
+    peak factor) gives None figures and its reason in ``warnings``. A case of several contacts gives the largest
+    force over all contacts, the probability that any pounds, the impacts of all, the widest of the contacts' gaps
+    for the target and the governing contact's sigma_X; the paper's force is None (its method has one contact).
     """
     from pounding.closed_form.estimator import estimate
     from pounding.errors import ConvergenceError
@@ -81,6 +83,16 @@ def point_estimate(data: dict, adjustment: dict | None = None) -> dict:
     except (CaseError, ConvergenceError) as error:
         return {"force": None, "paper_force": None, "pounding_probability": None, "impacts": None,
                 "required_gap": None, "sigma_relative_displacement": None, "warnings": [f"estimate failed: {error}"]}
+    if len(result.contacts) > 1:
+        return {
+            "force": result.force_expected,
+            "paper_force": None,
+            "pounding_probability": result.pounding_probability,
+            "impacts": sum(c.impacts_expected for c in result.contacts),
+            "required_gap": max(c.required_gap for c in result.contacts),
+            "sigma_relative_displacement": result.contacts[result.governing].sigma_relative_displacement,
+            "warnings": list(result.warnings),
+        }
     return {
         "force": result.force_expected,
         "paper_force": result.paper.force_expected,
