@@ -91,11 +91,11 @@ _VELOCITY = re.compile(r"\d (m/s|cm/s|mm/s)\b")
 _UNITS = {"SI": ({"kN"}, {"mm"}, {"m/s"}), "kgf-cm-s": ({"kgf"}, {"cm"}, {"cm/s"})}
 _COMMANDS = [
     ("estimate", CASE),
-    ("estimate", CASE, "--check", "12", "--capacity", "3e5"),
-    ("simulate", CASE, "--records", "12", "--capacity", "3e5"),
+    ("estimate", CASE, "--check", "12", "--capacity", "300"),
+    ("simulate", CASE, "--records", "12", "--capacity", "300"),
     ("simulate", CASE, "--records", "12", "--design-gap", "0.9"),
     ("sweep", CASE, "--vary", "contact.gap=1,2", "--records", "4", "--scheduler", "serial", "--no-chart"),
-    ("fragility", CASE, "--capacity", "3e5", "--pga", "0.2,0.4"),
+    ("fragility", CASE, "--capacity", "300", "--pga", "0.2,0.4"),
     ("spectrum", CASE, "--period1", "0.8,1.2", "--period2", "0.4"),
 ]
 

@@ -83,10 +83,11 @@ def test_capacity_must_be_positive(capsys):
 
 
 def test_capacity_in_kgf_is_the_same_capacity_in_newtons(capsys):
-    """--units kgf-cm-s reads --capacity in kgf, converted once: 30,000 kgf is 294,199.5 N."""
+    """--capacity is in the forces' display unit: kN, or kgf with --units kgf-cm-s, converted once: 30,000 kgf is
+    294.1995 kN, 294,199.5 N."""
     import json
 
-    for arguments in (["--capacity", "30000", "--units", "kgf-cm-s"], ["--capacity", "294199.5"]):
+    for arguments in (["--capacity", "30000", "--units", "kgf-cm-s"], ["--capacity", "294.1995"]):
         assert main(["estimate", "section5-T2-0.4", "--json", *arguments]) == 0
         out = json.loads(capsys.readouterr().out)
         assert out["capacity"] == pytest.approx(294199.5)

@@ -130,7 +130,7 @@ def test_records_beyond_a_recorded_suite_are_named_as_the_option(tmp_path, capsy
     case = pounding.load_case(tmp_path / "case.toml")
     error = _raised(lambda: simulate(case, records=4))
     assert type(error) is ArgumentError and error.field == "records" and "3 recorded motions" in error.message
-    err = _cli(capsys, "fragility", str(tmp_path / "case.toml"), "--capacity", "1e5", "--pga", "0.1,0.2", "--records", "10",
+    err = _cli(capsys, "fragility", str(tmp_path / "case.toml"), "--capacity", "100", "--pga", "0.1,0.2", "--records", "10",
                "--scheduler", "serial")
     assert err.startswith("pounding fragility: error: --records: the case has 3 recorded motions; give records at most that")
 

@@ -1,4 +1,4 @@
-"""The gap sized to a capacity in the report (issue 34): ``pounding report --capacity F`` (F in N, or kgf with
+"""The gap sized to a capacity in the report (issue 34): ``pounding report --capacity F`` (F in kN, or kgf with
 ``--units kgf-cm-s``, as ``estimate --capacity``) and the dashboard's export state P(F_max > F) and the gap for F
 (``Estimate.gap_for_capacity``) in the summary, with the Monte Carlo at that gap on the check's records
 (``check_gap_for_capacity``); a bad value exits 2 naming ``--capacity``."""
@@ -32,14 +32,14 @@ def _row(page: str, quantity: str) -> list[str]:
     return [html.unescape(cell) for cell in re.findall(r"<td[^>]*>([^<]*)</td>", found.group(1))]
 
 
-@pytest.mark.parametrize("units, typed", [("SI", 3e5), ("kgf-cm-s", 30591.5)])
+@pytest.mark.parametrize("units, typed", [("SI", 300.0), ("kgf-cm-s", 30591.5)])
 def test_report_capacity_states_the_librarys_gap_for_it_and_its_monte_carlo(tmp_path, capsys, units, typed):
     path = tmp_path / "r.html"
     assert main(["report", SECTION5, "-o", str(path), "--records", "16", "--seed", "2", "--capacity", f"{typed:g}",
                  "--units", units, "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     shown = display(units)
-    capacity = typed * shown.system.force  # N
+    capacity = typed * shown.force_scale  # N: typed in kN, or kgf
     result = estimate(load_case(SECTION5))
     gap = result.gap_for_capacity(capacity)  # the library, directly
     at_gap = check_gap_for_capacity(result, capacity, check_estimate(result, records=16, seed=2))
@@ -91,7 +91,7 @@ def test_one_definition_of_capacity_for_every_command():
              for name, sub in commands.items() if any("--capacity" in a.option_strings for a in sub._actions)}
     assert set(found) == {"estimate", "simulate", "report", "fragility"}
     assert len({a.type for a in found.values()}) == 1
-    assert all(a.help.startswith("a capacity F (N; kgf with --units kgf-cm-s)") for a in found.values())
+    assert all(a.help.startswith("a capacity F (kN; kgf with --units kgf-cm-s)") for a in found.values())
 
 
 def test_the_dashboards_report_carries_the_pages_capacity():

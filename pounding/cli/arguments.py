@@ -78,20 +78,21 @@ tolerance = bounded_number(1e-12, 1e-2)
 
 
 def add_capacity(parser: argparse.ArgumentParser, what: str, required: bool = False) -> None:
-    """``--capacity F``: a force the contact can take, in N (kgf with ``--units kgf-cm-s``), > 0; ``what`` says
-    what it adds to the command's output ("also the probability that F_max exceeds it"). Read it in N with
-    :func:`capacity_newtons`."""
+    """``--capacity F``: a force the contact can take, in the forces' display unit (kN; kgf with ``--units
+    kgf-cm-s``), > 0; ``what`` says what it adds to the command's output ("also the probability that F_max exceeds
+    it"). Read it in N with :func:`capacity_newtons`."""
     parser.add_argument("--capacity", type=capacity, metavar="F", default=None, required=required,
-                        help=f"a capacity F (N; kgf with --units kgf-cm-s){': ' + what if what else ''}")
+                        help=f"a capacity F (kN; kgf with --units kgf-cm-s){': ' + what if what else ''}")
 
 
 def capacity_newtons(args) -> float | None:
-    """``--capacity`` in N: given in N, or in kgf with ``--units kgf-cm-s`` (converted here, once); None when not given."""
+    """``--capacity`` in N: given in the display unit of forces, kN, or kgf with ``--units kgf-cm-s`` (converted here,
+    once, as every force printed is shown in it); None when not given."""
     if args.capacity is None:
         return None
     from pounding.display_units import display  # light: no numerical library
 
-    return args.capacity * display(args.units).system.force
+    return args.capacity * display(args.units).force_scale
 
 
 def add_units(parser: argparse.ArgumentParser, what: str) -> None:

@@ -41,8 +41,8 @@ def add_fragility(commands) -> None:
         "ground acceleration (the case's ground motion scaled to each; recorded motions: every record to it): the "
         "closed form at every PGA and, with --records, Monte Carlo with its 95 %% interval (on the sweep's Dask "
         "engine), each with the lognormal fragility (median PGA, dispersion beta) fitted by maximum likelihood.",
-        epilog="examples:\n  pounding fragility section5-T2-0.4 --capacity 3e5 --pga 0.05:0.6:12\n"
-        "  pounding fragility section5-T2-0.4 --capacity 3e5 --pga 0.05:0.6:12 --records 100 -o fragility.html\n"
+        epilog="examples:\n  pounding fragility section5-T2-0.4 --capacity 300 --pga 0.05:0.6:12\n"
+        "  pounding fragility section5-T2-0.4 --capacity 300 --pga 0.05:0.6:12 --records 100 -o fragility.html\n"
         "  pounding fragility case.toml --capacity 30000 --units kgf-cm-s --pga 0.1,0.2,0.3,0.4 --json",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )

@@ -34,7 +34,7 @@ _EPILOG = """examples:
   pounding validate --records 300
   pounding sweep section5-T2-0.4 --vary contact.gap=0:5:11 --records 200 -o results/
   pounding report section5-T2-0.4 -o report.html --records 300
-  pounding fragility section5-T2-0.4 --capacity 3e5 --pga 0.05:0.6:12 --records 100 -o fragility.html
+  pounding fragility section5-T2-0.4 --capacity 300 --pga 0.05:0.6:12 --records 100 -o fragility.html
   pounding spectrum section5-T2-0.4 --period1 0.2:2:30 --period2 0.4 -o spectrum.html
   pounding simulate my_case.toml --records 50 --json
   pounding export opensees section5-T2-0.4 --records 20 --seed 1 -o opensees/
@@ -181,7 +181,7 @@ def parser() -> argparse.ArgumentParser:
         "  pounding report case.toml -o case.html --records 300 --units kgf-cm-s\n"
         "  pounding report section5-T2-0.4 -o report.html --records 100 --gap-points 4\n"
         "  pounding report section5-T2-0.4 -o report.html --records 300 --design-gap 0.95\n"
-        "  pounding report section5-T2-0.4 -o report.html --capacity 3e5",
+        "  pounding report section5-T2-0.4 -o report.html --capacity 300",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     report.add_argument("case", help="a preset name (see 'pounding cases') or a TOML case file")
