@@ -341,3 +341,18 @@ def test_fragility_spectrum_and_sweeps_take_a_case_of_several_contacts():
     whole = estimate(case)
     assert point["force"] == pytest.approx(whole.force_expected, rel=1e-12) and point["paper_force"] is None
     assert point["required_gap"] == pytest.approx(max(c.required_gap for c in whole.contacts), rel=1e-12)
+
+
+def test_each_contacts_design_gap_is_its_free_pairs():
+    """Without contact the buildings move independently: each contact's gap for the target, from one free run of the
+    whole row, is that of its two buildings alone (the same records; the integrator's steps differ, hence 1e-3)."""
+    from pounding.simulation.monte_carlo import design_gap, design_gaps
+
+    case = row()
+    gaps = design_gaps(case, 0.9, records=12, seed=4)
+    assert len(gaps) == 3
+    for index, gap in enumerate(gaps):
+        alone = design_gap(case.pair(index), 0.9, records=12, seed=4)
+        np.testing.assert_allclose(gap.peaks, alone.peaks, rtol=1e-3)
+    with pytest.raises(CaseError, match="^contacts: "):
+        design_gap(case, 0.9, records=2)

@@ -39,14 +39,16 @@ def _simulate(args) -> int:
     from pounding.case.case import load_case
     from pounding.closed_form.estimator import estimate
     from pounding.errors import ConvergenceError, check_probability
-    from pounding.simulation.monte_carlo import MonteCarloPlan, Settings, design_gap, simulate
+    from pounding.simulation.monte_carlo import MonteCarloPlan, Settings, design_gap, design_gaps, simulate
 
     if args.design_gap is not None:
         check_probability(args.design_gap, "--design-gap")
     case = load_case(args.case)
     capacity = capacity_newtons(args)
     records, seed = study_size(case, args)
-    study = simulate if args.design_gap is None else partial(design_gap, target_probability=args.design_gap)
+    several = len(case.contacts) > 1
+    study = simulate if args.design_gap is None else partial(design_gaps if several else design_gap,
+                                                             target_probability=args.design_gap)
     with progress_bar(records) as progress:
         result = study(case, plan=MonteCarloPlan(records, seed, settings=Settings(tolerance=args.tolerance), progress=progress))
     try:  # a few ms beside seconds of simulation: the two methods side by side
@@ -56,6 +58,10 @@ def _simulate(args) -> int:
     shown = _shown(args)
     force_text = shown.force
     error_text = lambda f, r: f"{100 * (f / r - 1):+.1f} %" if abs(f / r - 1) <= 1e4 else f"{f / r:.3g} times"
+    if args.design_gap is not None and several:
+        from pounding.cli.rows import print_design_gaps
+
+        return print_design_gaps(case, result, closed_form, failure, args.json, _shown(args))
     if args.design_gap is not None:
         return _print_design_gap(case, result, closed_form, failure, args)
     if args.json:

@@ -3,6 +3,9 @@ a table of the contacts, in the case's order."""
 
 from __future__ import annotations
 
+import json
+import math
+
 from pounding import defaults
 from pounding.case.case import contact_label
 from pounding.closed_form.row import safe_side_statement
@@ -73,3 +76,28 @@ def row_simulation_lines(result, closed_form, shown) -> list[str]:
         lines.append(f"{text}  {force(summary['force_max_mean']):>10s}  {interval:>23s}  {100 * summary['pounding_fraction']:>6.1f} %  "
                      f"{summary['impacts_mean']:>7.2f}  {closed:>11s}")
     return lines
+
+
+def print_design_gaps(case, gaps, closed_form, failure: str | None, as_json: bool, shown) -> int:
+    """``simulate --design-gap P`` on a case of several contacts: each contact's gap for P of no pounding from the
+    records' free motion, the closed form's beside it."""
+    closed = [None] * len(gaps) if closed_form is None else [c.required_gap for c in closed_form.contacts]
+    if as_json:
+        contacts = [{"between": list(c.between), "levels": list(c.levels), **gap.to_dict(), "closed_form_required_gap": mine}
+                    for c, gap, mine in zip(case.contacts, gaps, closed)]
+        failed = {} if failure is None else {"closed_form_error": failure}
+        print(json.dumps({"case": case.name, "target_probability": gaps[0].target_probability, "records": gaps[0].n_records,
+                          "seed": None if case.recorded else gaps[0].seed, "contacts": contacts, **failed}))
+        return 0
+    length = shown.length
+    target = f"{100 * gaps[0].target_probability:g} %"
+    print(f"case            {case.name}")
+    print(f"records         {gaps[0].n_records} (free motion: the case's gaps are not used)")
+    print(f"gap for {target} no pounding at each contact")
+    print(f"{_HEAD}  {'Monte Carlo':>11s}  {'90 % bound':>12s}  {'closed form':>11s}")
+    for text, gap, mine in zip(_contact_columns(case), gaps, closed):
+        bound = length(gap.upper_bound) if math.isfinite(gap.upper_bound) else "n/a"
+        print(f"{text}  {length(gap.gap):>11s}  {bound:>12s}  {length(mine) if mine is not None else 'n/a':>11s}")
+    if failure is not None:
+        print(f"closed form     n/a: {failure}")
+    return 0

@@ -54,6 +54,7 @@ __all__ = [
     "SimulationResult",
     "TimeHistory",
     "design_gap",
+    "design_gaps",
     "gap_from_peaks",
     "integrate",
     "records_for_bound",
@@ -236,18 +237,29 @@ def design_gap(case: Case, target_probability: float = defaults.TARGET_PROBABILI
     The records are those :func:`simulate` integrates for the same ``seed``;
     at the gap returned, :func:`simulate` finds the same records pounding.
     """
+    case = as_case(case)
+    case.contact  # noqa: B018 -- CaseError naming ``contacts`` for several: design_gaps gives each contact's
+    return design_gaps(case, target_probability, plan, **options)[0]
+
+
+def design_gaps(case: Case, target_probability: float = defaults.TARGET_PROBABILITY, plan: MonteCarloPlan | None = None,
+                **options) -> tuple[DesignGap, ...]:
+    """Each contact's :func:`design_gap`, in the case's order, from one run of the records with every contact apart:
+    until the first impact anywhere the buildings move freely, so each contact's gap is that of the free motion."""
     target_probability = check_probability(target_probability)
     case = as_case(case)
     plan = as_plan(plan, options).with_records(suite_size(case) or defaults.DESIGN_GAP_RECORDS)
     records, seed, settings = plan.records, plan.seed, plan.settings
-    free = case.with_contact(gap=2.0 * settings.displacement_limit)  # one contact: each contact's is its pair's
-    result = simulate(free, dataclasses.replace(plan, first_record=0))
-    peaks = result.relative_displacement_max
-    ordered = np.sort(peaks)
+    apart = tuple(dataclasses.replace(c, gap=2.0 * settings.displacement_limit) for c in case.contacts)
+    result = simulate(dataclasses.replace(case, contacts=apart), dataclasses.replace(plan, first_record=0))
     # P(ordered[j - 1] >= true gap) = P(Binomial(records, p) <= j - 1); the first j where that reaches 0.9.
     confident = np.flatnonzero(bdtr(np.arange(records), records, target_probability) >= 0.9)
-    upper = float(ordered[confident[0]]) if confident.size else math.inf
-    return DesignGap(gap_from_peaks(peaks, target_probability), upper, float(target_probability), peaks, seed)
+    gaps = []
+    for contact in result.contacts:
+        peaks = contact.relative_displacement_max
+        upper = float(np.sort(peaks)[confident[0]]) if confident.size else math.inf
+        gaps.append(DesignGap(gap_from_peaks(peaks, target_probability), upper, float(target_probability), peaks, seed))
+    return tuple(gaps)
 
 
 def gap_from_peaks(peaks, target_probability: float) -> float:
