@@ -169,7 +169,7 @@ def test_monte_carlo_gives_its_verdict(dashboard):
     dashboard.locator(".mc-verdict").wait_for(timeout=60_000)
     case = load_case(DEFAULT)
     study = MonteCarloPoint.from_result(simulate(case, records=12, seed=1))
-    _wait_text(dashboard, ".mc-verdict", monte_carlo_check(estimate(case).force_expected, study).text)
+    _wait_text(dashboard, ".mc-verdict", monte_carlo_check(estimate(case), study).text)
     assert dashboard.errors == []
 
 

@@ -117,7 +117,7 @@ def test_five_uploaded_records_run_their_own_monte_carlo(dashboard, tmp_path):
     dashboard.locator(".mc-verdict").wait_for(timeout=60_000)
     study = MonteCarloPoint.from_result(simulate(case))  # each of the 5 records once
     assert study.records == 5
-    _wait_text(dashboard, ".mc-verdict", monte_carlo_check(result.force_expected, study).text)
+    _wait_text(dashboard, ".mc-verdict", monte_carlo_check(result, study).text)
     text = _page_text(dashboard)
     assert "Monte Carlo done: 5 records." in text and "--records" not in text and "0..49" not in text
     assert dashboard.errors == []
@@ -183,7 +183,7 @@ def test_a_monte_carlo_verdict_is_shown_at_its_own_gap_only(dashboard):
     dashboard.locator(".bk-tab", has_text="Monte Carlo").first.click()
     _type(dashboard, "records", "10")
     dashboard.get_by_role("button", name="Run Monte Carlo").click()
-    verdict = monte_carlo_check(estimate(case).force_expected, MonteCarloPoint.from_result(simulate(case, records=10, seed=1))).text
+    verdict = monte_carlo_check(estimate(case), MonteCarloPoint.from_result(simulate(case, records=10, seed=1))).text
     _wait_text(dashboard, ".mc-verdict", verdict, timeout=60_000)
     _type(dashboard, "gap [mm]", "30")
     data = tomllib.loads(preset_text(DEFAULT))

@@ -235,20 +235,57 @@ def test_the_summary_checks_the_closed_form_on_the_records_of_a_matching_study(t
     assert rows["force the tool stands behind"] == shown.force(check.force_answer)
 
 
-def test_the_monte_carlo_check_says_within_or_how_far_below_or_above():
-    """The dashboard's older verdict on a study (dashboard/headline.py), kept until it takes EstimateCheck."""
-    from pounding.report import MonteCarloPoint, monte_carlo_check
+def test_the_verdict_on_a_study_is_the_checks_rule_inside_the_interval_or_within_the_tolerance():
+    """The dashboard's line on a study it ran (monte_carlo_check) agrees exactly where the check's rule
+    (studies.check.closed_form_agrees) does: inside the 95 % interval, or outside it but within 10 % of the mean.
+    Its words say which; an interval-only rule fails the case 8.5 % under the mean, below the interval."""
+    import dataclasses
 
-    study = MonteCarloPoint(gap=0.01, records=300, seed=1, force_max_mean=306.15e3, force_low=272.6e3, force_high=339.7e3,
+    from pounding import defaults
+    from pounding.report import MonteCarloPoint, monte_carlo_check
+    from pounding.studies.check import closed_form_agrees, unpounded_bound
+
+    result = estimate(load_case(DEFAULT_PRESET))
+    study = MonteCarloPoint(gap=0.01, records=300, seed=1, force_max_mean=306.15e3, force_low=290e3, force_high=322e3,
                             pounding_fraction=1.0)
-    below = monte_carlo_check(259.6e3, study)  # the issue's numbers
-    assert (below.within, below.text) == (False, "below the Monte Carlo 95 % interval: 15 % under the Monte Carlo mean")
-    assert below.relative == pytest.approx(259.6 / 306.15 - 1)
-    assert monte_carlo_check(300e3, study).within is True and "within" in monte_carlo_check(300e3, study).text
-    above = monte_carlo_check(400e3, study)
-    assert not above.within and above.text.startswith("above") and "31 % over" in above.text
-    lonely = monte_carlo_check(300e3, MonteCarloPoint(0.01, 1, 1, 306e3, float("nan"), float("nan"), 1.0))
-    assert lonely.within is None and "no 95 % interval from 1 record(s)" in lonely.text
+    tolerance = defaults.CHECK_TOLERANCE
+
+    def check(force, point=study, probability=0.5):
+        closed = dataclasses.replace(result, force_expected=force, pounding_probability=probability)
+        verdict = monte_carlo_check(closed, point)
+        rule = closed_form_agrees(closed, point.force_max_mean, (point.force_low, point.force_high), point.records)
+        assert verdict.agrees is rule and verdict.text.startswith("the estimate agrees" if rule else "the estimate does not agree")
+        return verdict
+
+    inside = check(300e3)
+    assert inside.agrees and "inside the 95 % interval, 2 % under the mean" in inside.text
+    near = check(280e3)  # below the interval, within the tolerance of the mean
+    assert 280e3 < study.force_low and abs(280e3 / study.force_max_mean - 1) <= tolerance
+    assert near.agrees and near.text == f"the estimate agrees: 9 % under the mean, within {100 * tolerance:g} % (below the 95 % interval)"
+    below = check(259.6e3)  # the issue's numbers
+    assert not below.agrees and below.relative == pytest.approx(259.6 / 306.15 - 1)
+    assert below.text == f"the estimate does not agree: below the 95 % interval and 15 % under the mean, more than {100 * tolerance:g} %"
+    above = check(400e3)
+    assert not above.agrees and "above the 95 % interval and 31 % over the mean" in above.text
+    lonely = MonteCarloPoint(0.01, 1, 1, 306e3, float("nan"), float("nan"), 1.0)
+    assert check(300e3, lonely).agrees and not check(250e3, lonely).agrees and "one record: no 95 % interval" in check(300e3, lonely).text
+    calm = MonteCarloPoint(0.01, 100, 1, 0.0, 0.0, 0.0, 0.0)  # no record pounded: the probability the records allow
+    bound = unpounded_bound(100)
+    assert check(1e5, calm, probability=0.9 * bound).agrees and not check(1e5, calm, probability=1.1 * bound).agrees
+
+
+def test_the_verdict_on_a_study_is_the_checks_verdict_on_the_same_records():
+    """The same 12 records seeded 1: the page's study (simulate) and the check (check_estimate) give one verdict."""
+    from pounding import simulate
+    from pounding.report import MonteCarloPoint, monte_carlo_check
+    from pounding.studies.check import check_estimate
+
+    case = load_case(DEFAULT_PRESET)
+    result = estimate(case)
+    point = MonteCarloPoint.from_result(simulate(case, records=12, seed=1))
+    checked = check_estimate(result, records=12, seed=1)
+    assert point.force_max_mean == checked.force_max_mean
+    assert monte_carlo_check(result, point).agrees is checked.agrees
 
 
 def test_the_inputs_table_has_every_storey_and_the_excitation_in_its_form():
