@@ -55,6 +55,8 @@ _FAILURES = (InputError, ConvergenceError, SimulationError, OverflowError, Value
 
 _NOT_OF_THE_CASE = ("preset", "units", "advanced", "records", "seed")
 """Inputs of the model that are not the case's (a preset's values are compared without them)."""
+_NOT_ESTIMATED = ("capacity",)
+"""Inputs that change what the headline and the fragility tab read from the estimate, not the estimate: no new one."""
 
 
 
@@ -111,7 +113,9 @@ class PoundingModel(CaseInputs, Studies, Pinning):
         self._case_label = ""  # an uploaded case file's name (stem), while its case is shown
         self.case_file_name = ""  # that file's name as uploaded ('my-house.toml'), or ''
         self._shown_units = self.units
-        self.param.watch(self._on_input, [name for name in input_names(self) if name not in _NOT_OF_THE_CASE or name == "seed"])
+        self._capacity_gap: tuple | None = None  # (the estimate, the capacity [N], its gap [m]): gap_for_capacity's last
+        self.param.watch(self._on_input, [name for name in input_names(self) if name not in _NOT_OF_THE_CASE + _NOT_ESTIMATED
+                                          or name == "seed"])
         for building in self.buildings():
             building.param.watch(self._on_building_input, [name for name in input_names(building) if name != "stiffness"])
         self._load_preset()
@@ -301,6 +305,14 @@ class PoundingModel(CaseInputs, Studies, Pinning):
             self.note = f"The contact stiffness is now read in {unit} ({self.contact_model} law): check its value."
 
     # --- outputs -------------------------------------------------------------------
+
+    def gap_for_capacity(self, capacity: float) -> float:
+        """The gap [m] for ``capacity`` [N] of the estimate shown (``result.gap_for_capacity``), computed once per
+        estimate and capacity: the headline asks at every redraw, and each answer takes tens of milliseconds."""
+        known = self._capacity_gap
+        if known is None or known[0] is not self.result or known[1] != capacity:
+            known = self._capacity_gap = (self.result, capacity, self.result.gap_for_capacity(capacity))
+        return known[2]
 
     def offer(self, owner: param.Parameterized, name: str, value) -> str:
         """Take ``value`` typed into input ``name`` of ``owner`` (this model or one of its buildings), or refuse it:

@@ -263,7 +263,8 @@ class PoundingDashboard(pn.viewable.Viewer):
         return headline_html(result, units, capacity_si, m.monte_carlo_for_current_gap(), m.current_design_gap(), m.case_name(),
                              check=check, checking=m.checks and check is None and not check_error, check_error=check_error,
                              held=held, pinned=pinned_html(pinned, result, units,
-                                                           StateMonteCarlo.of(result, check, m.monte_carlo_for_current_gap())))
+                                                           StateMonteCarlo.of(result, check, m.monte_carlo_for_current_gap())),
+                             gap_for_capacity=m.gap_for_capacity)
 
     def _request_redraw(self, *_events) -> None:
         if not self._redraw_pending:

@@ -421,3 +421,28 @@ def test_the_headline_opens_on_the_codes_clauses_and_gives_the_gap_for_the_capac
     assert shown == pytest.approx(result.gap_for_capacity(4.1e5), abs=6e-5)  # as shown, to the 0.01 mm printed
     wide = result.case.with_contact(gap=0.3)
     assert "not met" not in re.search(r'<p class="code-clauses">.*?</p>', headline_html(estimate(wide))).group(0)
+
+
+def test_a_redraw_of_the_headline_computes_the_gap_for_the_capacity_once_per_estimate_and_capacity(monkeypatch):
+    """The page's headline asks for the gap sized to the capacity at every redraw (a study's progress, a note, a
+    refusal): it is computed once per estimate and capacity, and again only when either changes."""
+    from dashboard.view import PoundingDashboard
+    from pounding.closed_form.estimator import Estimate
+
+    calls = []
+    original = Estimate.gap_for_capacity
+    monkeypatch.setattr(Estimate, "gap_for_capacity", lambda self, capacity: calls.append(capacity) or original(self, capacity))
+    page = PoundingDashboard()  # no session: computed at once, in process
+    model = page.model
+    assert "gap-capacity" in page.headline.object and len(calls) == 1
+    for waiting in ("Upload the records first.", ""):  # two redraws, same estimate and capacity
+        model.waiting = waiting
+        assert ("Upload the records first." in page.headline.object) is bool(waiting)
+    model.param.trigger("pinned")
+    assert len(calls) == 1
+    model.capacity = 2 * model.capacity
+    assert len(calls) == 2 and calls[-1] == pytest.approx(1e3 * model.capacity)  # kN
+    model.gap = 20.0  # a new estimate
+    assert len(calls) == 3 and "gap-capacity" in page.headline.object
+    model.waiting = "again"
+    assert len(calls) == 3
