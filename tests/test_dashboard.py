@@ -162,6 +162,25 @@ def test_bad_input_is_named_and_no_number_is_shown(dashboard, tmp_path):
     assert dashboard.locator(".fe-recommended").count() == 0
 
 
+def test_a_note_goes_with_the_next_change_of_input(dashboard):
+    """Two storeys for building 1: the page says the storey stiffness follows; a new gap, the next change, ends
+    the note (its estimate shown, the model's for the same inputs)."""
+    from dashboard.model import PoundingModel
+
+    _open(dashboard, "Building 1")
+    _type(dashboard, "storeys", "2")
+    note = dashboard.get_by_text("The storey stiffness follows the number of storeys", exact=False).first
+    note.wait_for(timeout=UPDATE_TIMEOUT)
+    _type(dashboard, "gap [mm]", "20")
+    model = PoundingModel()
+    model.building_1.storeys, model.gap = 2, 20.0
+    assert model.note == "" and model.error == ""
+    _wait_text(dashboard, ".fe-recommended", _shown(model.result.force_expected))
+    note.wait_for(state="hidden", timeout=UPDATE_TIMEOUT)
+    assert dashboard.get_by_text("The storey stiffness follows", exact=False).count() == 0
+    assert dashboard.errors == []
+
+
 def test_monte_carlo_gives_its_verdict(dashboard):
     dashboard.locator(".bk-tab", has_text="Monte Carlo").first.click()
     _type(dashboard, "records", "12")

@@ -64,6 +64,35 @@ def test_more_storeys_keep_the_fundamental_period_and_say_so():
     assert model.error == "" and model.result.case.contact.levels == (2, 1)
 
 
+def test_a_note_stands_until_a_later_change_of_input():
+    """A note is of the change that said it: the storey stiffness following the storeys (with the contact floor it
+    moved, in the same change), 'Loaded ec8.toml.', the contact stiffness read in other units, a refused upload. The
+    next change of any input ends it; showing the advanced inputs, which changes nothing, does not."""
+    model = PoundingModel()
+    model.building_1.contact_floor = 1
+    model.building_1.storeys = 2
+    said = model.note
+    assert "T1 = 1.2 s" in said and model.error == ""
+    model.advanced = True
+    assert model.note == said
+    model.restitution = 0.6
+    assert model.note == ""
+    model.load_toml(preset_text(DEFAULT), "ec8.toml")
+    assert model.note == "Loaded ec8.toml."
+    model.gap = 20.0
+    assert model.note == ""
+    model.contact_model = "hertz"
+    assert "contact stiffness is now read in" in model.note
+    assert model.units == "kgf-cm-s"  # the file's
+    model.units = "SI"  # the unit named in the note is no longer the one shown
+    assert model.note == ""
+    model.building_2.contact_floor = 1  # unchanged: nothing said, nothing ended
+    model.upload_records({"..": b"0 0\n"})
+    assert model.upload_error != ""
+    model.building_2.damping_ratio = 0.04
+    assert model.upload_error == ""
+
+
 def test_chain_stiffness_gives_the_period():
     from pounding import Building, Storey
 
