@@ -84,7 +84,8 @@ class PoundingModel(CaseInputs, Studies, Pinning):
     result = param.Parameter(None, precedence=-1, doc="pounding.closed_form.estimator.Estimate of the current inputs, or None.")
     snapshot = param.Parameter(None, precedence=-1, doc="pounding.report.Snapshot of the current inputs (the plots), or None.")
     error = param.String("", precedence=-1, doc="Why there is no result (names the input).")
-    note = param.String("", precedence=-1, doc="What the last change did besides (moved another input, loaded a file): shown until the next change of input.")
+    note = param.String("", precedence=-1, doc="What the last change did besides (moved another input, loaded a file): "
+                        "shown until the next change of input.")
     uploaded = param.List([], precedence=-1, doc="Names of the uploaded records.")
     upload_error = param.String("", precedence=-1, doc="Why the last upload was refused (its size, its name), or ''.")
     refused = param.Dict({}, precedence=-1, doc="Values typed but not taken: {input's key (input_key): why, in the "
