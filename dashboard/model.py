@@ -40,7 +40,7 @@ from pounding.closed_form.estimator import estimate
 from pounding.closed_form.pair import LinearizedPair
 from pounding.display_units import display
 from pounding.errors import CaseError, ConvergenceError, InputError, SimulationError
-from pounding.presets import preset_names, preset_text
+from pounding.presets import preset_names, preset_text, preset_title
 from pounding.report import compute_snapshot
 from pounding.units import UNIT_SYSTEMS
 
@@ -72,8 +72,9 @@ def _names_files(records) -> bool:
 class PoundingModel(CaseInputs, Studies, Pinning):
     """Inputs of a case (dimensional ones in the unit system shown) and the results for it."""
 
-    preset = param.Selector(default=defaults.CASE, objects=preset_names(), label="case (preset)",
-                            doc="A built-in case (the paper's Sections 5 and 6); every input below starts from it.")
+    preset = param.Selector(default=defaults.CASE, objects={preset_title(name): name for name in preset_names()},
+                            label="case (preset)", doc="A built-in case (the paper's Sections 5 and 6), listed by its "
+                            "title, its value the preset's name; every input below starts from it.")
     units = param.Selector(default="SI", objects=list(UNIT_SYSTEMS), label="units",
                            doc="Unit system of the inputs and results: SI (kN, mm) or the paper's kgf, cm, s.")
     advanced = param.Boolean(False, label="advanced inputs", doc="Show the raw Bouc-Wen form, the contact law and its stiffness.")

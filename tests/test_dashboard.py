@@ -15,7 +15,7 @@ from pounding.case.case import case_from_dict
 from pounding.display_units import display
 from pounding.hazard.accelerograms import Accelerogram, write_at2
 from pounding.hazard.excitation import ground_accelerations
-from pounding.presets import preset_text
+from pounding.presets import preset_names, preset_text, preset_title
 from pounding.report import MonteCarloPoint, monte_carlo_check
 from pounding.studies.check import check_estimate
 from tests.browser import CANVAS_COUNT_JS, LOAD_TIMEOUT, UPDATE_TIMEOUT
@@ -160,6 +160,20 @@ def test_bad_input_is_named_and_no_number_is_shown(dashboard, tmp_path):
     _type(dashboard, "SD1", "3")  # TS = SD1 / SDS = 15 s, beyond TL = 8 s
     dashboard.get_by_text("excitation.TL", exact=False).first.wait_for(timeout=UPDATE_TIMEOUT)
     assert dashboard.locator(".fe-recommended").count() == 0
+
+
+def test_the_preset_list_shows_titles_and_the_choice_is_the_presets_name(dashboard):
+    """Each preset is listed by its title (the library's, pounding.presets.preset_title), not its bare name; the
+    case chosen by its title is the preset of that name, and the headline names it so."""
+    select = dashboard.locator(".bk-input-group", has=dashboard.get_by_text("case (preset)")).locator("select").first
+    shown = [text.strip() for text in select.locator("option").all_inner_texts()]
+    assert shown == [preset_title(name) for name in preset_names()]
+    assert select.evaluate("s => s.options[s.selectedIndex].text") == preset_title(DEFAULT)
+    other = "section6-T2-0.4"
+    select.select_option(label=preset_title(other))
+    _wait_text(dashboard, ".fe-recommended", _shown(estimate(load_case(other)).force_expected))
+    _wait_text(dashboard, ".headline .case-name", other)
+    assert dashboard.errors == []
 
 
 def test_a_note_goes_with_the_next_change_of_input(dashboard):

@@ -17,7 +17,7 @@ from pounding.case.case import case_from_dict
 from pounding.display_units import display
 from pounding.hazard.accelerograms import Accelerogram, write_at2
 from pounding.hazard.excitation import ground_accelerations
-from pounding.presets import preset_text
+from pounding.presets import preset_text, preset_title
 from pounding.report import MonteCarloPoint, monte_carlo_check
 from tests.browser import CANVAS_COUNT_JS, UPDATE_TIMEOUT
 from tests.test_dashboard import DEFAULT, _choose, _input, _open, _shown, _type, _wait_text
@@ -144,7 +144,7 @@ def test_an_uploaded_case_file_is_named_by_its_file_in_the_headline_and_the_repo
     assert "<title>Pounding report: my-house</title>" in report and "Inputs: the case my-house.toml." in report
     assert f"preset {DEFAULT}" not in report
     dashboard.locator(".bk-input-group", has=dashboard.get_by_text("case (preset)")).locator("select").first.select_option(
-        "section6-T2-0.4")
+        label=preset_title("section6-T2-0.4"))  # as a user picks it: by its title
     _wait_text(dashboard, ".fe-recommended", shown.force(estimate(load_case("section6-T2-0.4")).force_expected))
     assert dashboard.get_by_text("Loaded my-house.toml.").count() == 0
     assert _text(dashboard.locator(".headline .case-name")) == "section6-T2-0.4"
