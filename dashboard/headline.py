@@ -11,8 +11,10 @@ from __future__ import annotations
 
 import html
 import math
+from collections.abc import Callable
 
 from pounding.display_units import display
+from pounding.errors import ConvergenceError
 from pounding.report import monte_carlo_check
 from pounding.studies.check import unpounded_bound
 
@@ -119,8 +121,10 @@ def _check_line(check, units: str, checking: bool, check_error: str) -> str:
 
 def headline_html(result, units: str = "SI", capacity: float | None = None, monte_carlo=None, design_gap=None,
                   name: str = "", check=None, checking: bool = False, check_error: str = "", held: str = "",
-                  pinned: str = "") -> str:
-    """The headline of an :class:`~pounding.closed_form.estimator.Estimate` ``result``; ``capacity`` [N] adds P(F_max > capacity);
+                  pinned: str = "", gap_for_capacity: Callable[[float], float] | None = None) -> str:
+    """The headline of an :class:`~pounding.closed_form.estimator.Estimate` ``result``; ``capacity`` [N] adds P(F_max > capacity)
+    and the gap for it, from ``gap_for_capacity(capacity)`` [m] (default ``result.gap_for_capacity``; the page passes
+    its model's, computed once per estimate and capacity);
     ``monte_carlo`` a :class:`~pounding.report.MonteCarloPoint` of exactly this case, ``design_gap`` its Monte Carlo
     design gap, each when run. ``check``, the :class:`~pounding.studies.check.EstimateCheck` of exactly ``result``,
     puts its verdict under the numbers; where the closed form does not agree, the force is the records' (the closed
@@ -158,16 +162,20 @@ def headline_html(result, units: str = "SI", capacity: float | None = None, mont
     if capacity is not None:
         numbers.append(_number(f"{100 * result.probability_exceeding(capacity):.3g} %", f"P(F<sub>max</sub> &gt; {shown.force(capacity)})",
                                "p-exceed"))
-        numbers.append(_number(shown.length(result.gap_for_capacity(capacity)), f"gap for P(F<sub>max</sub> &gt; "
+        try:
+            gap_capacity = shown.length((gap_for_capacity or result.gap_for_capacity)(capacity))
+        except ConvergenceError:  # the probability stays above the target up to twice the gap for no pounding
+            gap_capacity = f"over {shown.length(2 * result.required_gap)}"
+        numbers.append(_number(gap_capacity, f"gap for P(F<sub>max</sub> &gt; "
                                f"{shown.force(capacity)}) &le; {100 * (1 - result.target_probability):.4g} %", "gap-capacity"))
     lines = [_check_line(check, units, checking, check_error)]
     done = {"monte_carlo", "design_gap"} if check is not None else set()  # the check is the study the advice asks for
     if monte_carlo is not None:
         done.add("monte_carlo")
-        text = monte_carlo_check(result.force_expected, monte_carlo).text
+        text = monte_carlo_check(result, monte_carlo).text  # the rule of the check above (studies.check.closed_form_agrees)
         lines.append(f'<p class="verdict">Monte Carlo ({monte_carlo.records} records): <span class="mc-mean">'
                      f'{shown.force(monte_carlo.force_max_mean)}</span>, 95 % interval {shown.force(monte_carlo.force_low)} to '
-                     f'{shown.force(monte_carlo.force_high)}; the estimate is <span class="mc-verdict">{html.escape(text)}</span>.</p>')
+                     f'{shown.force(monte_carlo.force_high)}; <span class="mc-verdict">{html.escape(text)}</span>.</p>')
     if design_gap is not None:
         done.add("design_gap")
         lines.append(f'<p class="verdict">Monte Carlo gap for {100 * design_gap.target_probability:.4g} % no pounding: '

@@ -40,7 +40,7 @@ from pounding.closed_form.estimator import estimate
 from pounding.closed_form.pair import LinearizedPair
 from pounding.display_units import display
 from pounding.errors import CaseError, ConvergenceError, InputError, SimulationError
-from pounding.presets import preset_names, preset_text
+from pounding.presets import preset_names, preset_text, preset_title
 from pounding.report import compute_snapshot
 from pounding.units import UNIT_SYSTEMS
 
@@ -55,6 +55,10 @@ _FAILURES = (InputError, ConvergenceError, SimulationError, OverflowError, Value
 
 _NOT_OF_THE_CASE = ("preset", "units", "advanced", "records", "seed")
 """Inputs of the model that are not the case's (a preset's values are compared without them)."""
+_NOTES = ("note", "upload_error")
+"""The page's one-off notes: each stands until a later change of input (:meth:`PoundingModel._drop_stale_notes`)."""
+_NOT_ESTIMATED = ("capacity",)
+"""Inputs that change what the headline and the fragility tab read from the estimate, not the estimate: no new one."""
 
 
 
@@ -68,8 +72,9 @@ def _names_files(records) -> bool:
 class PoundingModel(CaseInputs, Studies, Pinning):
     """Inputs of a case (dimensional ones in the unit system shown) and the results for it."""
 
-    preset = param.Selector(default=defaults.CASE, objects=preset_names(), label="case (preset)",
-                            doc="A built-in case (the paper's Sections 5 and 6); every input below starts from it.")
+    preset = param.Selector(default=defaults.CASE, objects={preset_title(name): name for name in preset_names()},
+                            label="case (preset)", doc="A built-in case (the paper's Sections 5 and 6), listed by its "
+                            "title, its value the preset's name; every input below starts from it.")
     units = param.Selector(default="SI", objects=list(UNIT_SYSTEMS), label="units",
                            doc="Unit system of the inputs and results: SI (kN, mm) or the paper's kgf, cm, s.")
     advanced = param.Boolean(False, label="advanced inputs", doc="Show the raw Bouc-Wen form, the contact law and its stiffness.")
@@ -80,7 +85,8 @@ class PoundingModel(CaseInputs, Studies, Pinning):
     result = param.Parameter(None, precedence=-1, doc="pounding.closed_form.estimator.Estimate of the current inputs, or None.")
     snapshot = param.Parameter(None, precedence=-1, doc="pounding.report.Snapshot of the current inputs (the plots), or None.")
     error = param.String("", precedence=-1, doc="Why there is no result (names the input).")
-    note = param.String("", precedence=-1, doc="A change that moved another input, said once.")
+    note = param.String("", precedence=-1, doc="What the last change did besides (moved another input, loaded a file): "
+                        "shown until the next change of input.")
     uploaded = param.List([], precedence=-1, doc="Names of the uploaded records.")
     upload_error = param.String("", precedence=-1, doc="Why the last upload was refused (its size, its name), or ''.")
     refused = param.Dict({}, precedence=-1, doc="Values typed but not taken: {input's key (input_key): why, in the "
@@ -111,7 +117,14 @@ class PoundingModel(CaseInputs, Studies, Pinning):
         self._case_label = ""  # an uploaded case file's name (stem), while its case is shown
         self.case_file_name = ""  # that file's name as uploaded ('my-house.toml'), or ''
         self._shown_units = self.units
-        self.param.watch(self._on_input, [name for name in input_names(self) if name not in _NOT_OF_THE_CASE or name == "seed"])
+        self._capacity_gap: tuple | None = None  # (the estimate, the capacity [N], its gap [m]): gap_for_capacity's last
+        self._said: dict[str, tuple] = {}  # each note shown: the inputs it was said at (_inputs_now)
+        self.param.watch(self._note_said, list(_NOTES))
+        self.param.watch(self._drop_stale_notes, [name for name in input_names(self) if name != "advanced"] + ["uploaded"])
+        for building in self.buildings():
+            building.param.watch(self._drop_stale_notes, [name for name in input_names(building) if name != "stiffness"])
+        self.param.watch(self._on_input, [name for name in input_names(self) if name not in _NOT_OF_THE_CASE + _NOT_ESTIMATED
+                                          or name == "seed"])
         for building in self.buildings():
             building.param.watch(self._on_building_input, [name for name in input_names(building) if name != "stiffness"])
         self._load_preset()
@@ -254,6 +267,23 @@ class PoundingModel(CaseInputs, Studies, Pinning):
         finally:
             self._syncing = False
 
+    def _inputs_now(self) -> tuple:
+        """Every input's value (the derived storey stiffness and the view's 'advanced' aside) and the records uploaded."""
+        return tuple(getattr(owner, name) for owner, name in self.inputs() if name not in ("stiffness", "advanced")) + (
+            tuple(self.uploaded),)
+
+    def _note_said(self, event) -> None:
+        if event.new:
+            self._said[event.name] = self._inputs_now()
+
+    def _drop_stale_notes(self, *_events) -> None:
+        """A note is of the change that said it ('Loaded ec8.toml.', the storey stiffness following the storeys):
+        a later change of input, whichever, ends it."""
+        now = self._inputs_now()
+        stale = {name: "" for name in _NOTES if getattr(self, name) and self._said.get(name) != now}
+        if stale:
+            self.param.update(**stale)
+
     @param.depends("preset", watch=True)
     def _on_preset(self):
         self._load_preset()
@@ -301,6 +331,14 @@ class PoundingModel(CaseInputs, Studies, Pinning):
             self.note = f"The contact stiffness is now read in {unit} ({self.contact_model} law): check its value."
 
     # --- outputs -------------------------------------------------------------------
+
+    def gap_for_capacity(self, capacity: float) -> float:
+        """The gap [m] for ``capacity`` [N] of the estimate shown (``result.gap_for_capacity``), computed once per
+        estimate and capacity: the headline asks at every redraw, and each answer takes tens of milliseconds."""
+        known = self._capacity_gap
+        if known is None or known[0] is not self.result or known[1] != capacity:
+            known = self._capacity_gap = (self.result, capacity, self.result.gap_for_capacity(capacity))
+        return known[2]
 
     def offer(self, owner: param.Parameterized, name: str, value) -> str:
         """Take ``value`` typed into input ``name`` of ``owner`` (this model or one of its buildings), or refuse it:

@@ -43,8 +43,9 @@ def fragility_plot(dashboard, snapshot, units: str, capacity: float):
     reference = PeakGroundAcceleration(snapshot.case).reference
     curve = fragility_curve(snapshot.case, capacity, reference * np.linspace(0.1, 2.0, FRAGILITY_POINTS))
     layout, note, _ = fragility_chart(curve, units)
+    tallest = max(figure.height for figure in layout.children)  # 420 px, and the legend under the frame
     for figure in layout.children:
-        figure.sizing_mode, figure.height = "stretch_width", 340
+        figure.sizing_mode, figure.height = "stretch_width", tallest - 80
     layout.sizing_mode = "stretch_width"
     return pn.Column(pn.pane.Bokeh(layout, sizing_mode="stretch_width"), pn.pane.Markdown(note, styles={"font-size": "12px"}),
                      sizing_mode="stretch_width")

@@ -40,8 +40,10 @@ REDRAW_DELAY_MS = 150
 """The plots are redrawn this long after a new result, so that the headline (the number the user waits for)
 reaches the browser and is painted before the larger plot data; changes in between give one redraw."""
 
+GAP_PLOT_HEIGHT = 440
+"""[px] The gap plot with its legend under the frame, one entry a row: the frame about 235 px high, 165 px with every entry shown."""
 INLINE_PLOT_MIN_WIDTH = 560
-"""[px] The gap plot's narrowest inline: its two-column legend (about 455 px beside the axis) and its title (about 310 px) fit."""
+"""[px] The gap plot's narrowest inline: its title (about 310 px) and its legend (about 300 px) fit beside the axes."""
 INLINE_RESULTS_MIN_WIDTH = 500
 """[px] Inline, the results go under the inputs when the cell leaves them less than this beside."""
 
@@ -175,13 +177,11 @@ class PoundingDashboard(pn.viewable.Viewer):
             job.param.watch(self._request_redraw, "result")
         bokeh = lambda fig, **kw: pn.pane.Bokeh(fig, sizing_mode="stretch_width", **kw)  # noqa: E731
         gap_figure = self.figures.gap
-        gap_figure.height = 340
+        gap_figure.height = GAP_PLOT_HEIGHT
         self.pinned_overlay = PinnedOverlay(gap_figure)
-        legend = gap_figure.legend[0]
-        legend.label_text_font_size, legend.spacing, legend.padding = "10px", 0, 4
-        gap_figure.add_layout(legend, "below")  # under the plot: the plot keeps the width of the page's right half
-        legend.orientation, legend.ncols = "horizontal", 2
-        self.gap_plot = bokeh(gap_figure, min_height=340)
+        legend = gap_figure.legend[0]  # under the frame (Figures), one entry a row: two would be wider than the plot
+        legend.orientation, legend.ncols = "vertical", 1
+        self.gap_plot = bokeh(gap_figure, min_height=GAP_PLOT_HEIGHT)
 
         self.tabs = LazyTabs(self, [
             ("Monte Carlo", self._monte_carlo_panel()),
@@ -263,7 +263,8 @@ class PoundingDashboard(pn.viewable.Viewer):
         return headline_html(result, units, capacity_si, m.monte_carlo_for_current_gap(), m.current_design_gap(), m.case_name(),
                              check=check, checking=m.checks and check is None and not check_error, check_error=check_error,
                              held=held, pinned=pinned_html(pinned, result, units,
-                                                           StateMonteCarlo.of(result, check, m.monte_carlo_for_current_gap())))
+                                                           StateMonteCarlo.of(result, check, m.monte_carlo_for_current_gap())),
+                             gap_for_capacity=m.gap_for_capacity)
 
     def _request_redraw(self, *_events) -> None:
         if not self._redraw_pending:

@@ -112,3 +112,37 @@ def dashboard(browser, dashboard_url):
     page.errors = errors
     yield page
     context.close()
+
+
+# Every drawn Bokeh figure of the page, measured: what does not fit, as sentences (an empty list: all fits). A title
+# (in its own font, measured on a canvas) must end inside the plot; an axis label be no longer than the frame's side
+# it labels; a legend lie inside the plot and outside the frame (over the frame it hides data). Returns
+# {checked: [titles], problems: [...]}.
+PLOT_FIT_JS = """() => {
+  const ctx = document.createElement('canvas').getContext('2d');
+  const measure = (text, style, size, font) => { ctx.font = `${style} ${size} ${font}`; return ctx.measureText(text).width; };
+  const checked = [], problems = [];
+  for (const view of window.Bokeh.index.query(v => v.model.type === 'Figure')) {
+    if (!view.el.isConnected || view.bbox.width === 0 || view.el.getClientRects().length === 0) continue;
+    const width = view.bbox.width, height = view.bbox.height, frame = view.frame.bbox;
+    const name = view.model.title?.text ?? '';
+    checked.push(name);
+    for (const child of view.children()) {
+      const m = child.model, box = child.bbox;
+      if (m.type === 'Title' && m.text) {
+        const needed = measure(m.text, m.text_font_style, m.text_font_size, m.text_font);
+        if (box.left + needed > width + 1) problems.push(`${name}: its title needs ${Math.round(needed)} px from ${Math.round(box.left)}, the plot is ${width} px wide`);
+      } else if (m.type === 'Legend' && box && box.width > 0) {
+        if (box.left < -1 || box.top < -1 || box.right > width + 1 || box.bottom > height + 1)
+          problems.push(`${name}: its legend (${Math.round(box.left)}..${Math.round(box.right)} x ${Math.round(box.top)}..${Math.round(box.bottom)}) leaves the ${width} x ${height} plot`);
+        if (!(box.right <= frame.left || box.left >= frame.right || box.bottom <= frame.top || box.top >= frame.bottom))
+          problems.push(`${name}: its legend lies over the frame`);
+      } else if (m.axis_label && typeof m.axis_label === 'string') {
+        const needed = measure(m.axis_label, m.axis_label_text_font_style, m.axis_label_text_font_size, m.axis_label_text_font);
+        const side = box.width > box.height ? frame.width : frame.height;
+        if (needed > side + 1) problems.push(`${name}: axis label '${m.axis_label}' needs ${Math.round(needed)} px beside a ${Math.round(side)} px side`);
+      }
+    }
+  }
+  return {checked, problems};
+}"""

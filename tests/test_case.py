@@ -104,6 +104,19 @@ def test_every_preset_loads(name):
     assert case.excitation.stationary == ("nonstationary" not in name)
     expected_g0 = 65.03e-4 * (4 * math.pi**2 if name.endswith("G0x4pi2") else 1.0)
     assert case.excitation.spectrum.G0 == pytest.approx(expected_g0, rel=1e-6)
+    # its title, for lists (the dashboard's), says what its name does, in words
+    from pounding.presets import preset_title
+
+    title = preset_title(name)
+    assert case.title == title and f"T2 = {t2:g} s" in title and ("non-stationary" in title) == ("nonstationary" in name)
+    assert ("G0 x 4 pi^2" in title) == name.endswith("G0x4pi2") and title.startswith(f"Section {name[7]}")
+
+
+def test_every_preset_has_a_title_of_its_own():
+    from pounding.presets import preset_title
+
+    titles = [preset_title(name) for name in preset_names()]
+    assert len(set(titles)) == len(titles) and all(0 < len(t) <= 80 for t in titles)
 
 
 def test_presets_cover_the_paper():

@@ -64,6 +64,35 @@ def test_more_storeys_keep_the_fundamental_period_and_say_so():
     assert model.error == "" and model.result.case.contact.levels == (2, 1)
 
 
+def test_a_note_stands_until_a_later_change_of_input():
+    """A note is of the change that said it: the storey stiffness following the storeys (with the contact floor it
+    moved, in the same change), 'Loaded ec8.toml.', the contact stiffness read in other units, a refused upload. The
+    next change of any input ends it; showing the advanced inputs, which changes nothing, does not."""
+    model = PoundingModel()
+    model.building_1.contact_floor = 1
+    model.building_1.storeys = 2
+    said = model.note
+    assert "T1 = 1.2 s" in said and model.error == ""
+    model.advanced = True
+    assert model.note == said
+    model.restitution = 0.6
+    assert model.note == ""
+    model.load_toml(preset_text(DEFAULT), "ec8.toml")
+    assert model.note == "Loaded ec8.toml."
+    model.gap = 20.0
+    assert model.note == ""
+    model.contact_model = "hertz"
+    assert "contact stiffness is now read in" in model.note
+    assert model.units == "kgf-cm-s"  # the file's
+    model.units = "SI"  # the unit named in the note is no longer the one shown
+    assert model.note == ""
+    model.building_2.contact_floor = 1  # unchanged: nothing said, nothing ended
+    model.upload_records({"..": b"0 0\n"})
+    assert model.upload_error != ""
+    model.building_2.damping_ratio = 0.04
+    assert model.upload_error == ""
+
+
 def test_chain_stiffness_gives_the_period():
     from pounding import Building, Storey
 
@@ -234,7 +263,7 @@ def test_monte_carlo_runs_gives_a_verdict_and_a_change_makes_it_stale():
     point = model.monte_carlo_for_current_gap()
     assert point is not None and point.records == 10 and point.force_low <= point.force_max_mean <= point.force_high
     page = headline_html(model.result, "SI", monte_carlo=point)
-    assert monte_carlo_check(model.result.force_expected, point).text in page
+    assert monte_carlo_check(model.result, point).text in page
     model.restitution = 0.6  # another case: the study is no longer shown
     assert model.monte_carlo_for_current_gap() is None and model.monte_carlo_points() == ()
 
@@ -421,3 +450,28 @@ def test_the_headline_opens_on_the_codes_clauses_and_gives_the_gap_for_the_capac
     assert shown == pytest.approx(result.gap_for_capacity(4.1e5), abs=6e-5)  # as shown, to the 0.01 mm printed
     wide = result.case.with_contact(gap=0.3)
     assert "not met" not in re.search(r'<p class="code-clauses">.*?</p>', headline_html(estimate(wide))).group(0)
+
+
+def test_a_redraw_of_the_headline_computes_the_gap_for_the_capacity_once_per_estimate_and_capacity(monkeypatch):
+    """The page's headline asks for the gap sized to the capacity at every redraw (a study's progress, a note, a
+    refusal): it is computed once per estimate and capacity, and again only when either changes."""
+    from dashboard.view import PoundingDashboard
+    from pounding.closed_form.estimator import Estimate
+
+    calls = []
+    original = Estimate.gap_for_capacity
+    monkeypatch.setattr(Estimate, "gap_for_capacity", lambda self, capacity: calls.append(capacity) or original(self, capacity))
+    page = PoundingDashboard()  # no session: computed at once, in process
+    model = page.model
+    assert "gap-capacity" in page.headline.object and len(calls) == 1
+    for waiting in ("Upload the records first.", ""):  # two redraws, same estimate and capacity
+        model.waiting = waiting
+        assert ("Upload the records first." in page.headline.object) is bool(waiting)
+    model.param.trigger("pinned")
+    assert len(calls) == 1
+    model.capacity = 2 * model.capacity
+    assert len(calls) == 2 and calls[-1] == pytest.approx(1e3 * model.capacity)  # kN
+    model.gap = 20.0  # a new estimate
+    assert len(calls) == 3 and "gap-capacity" in page.headline.object
+    model.waiting = "again"
+    assert len(calls) == 3

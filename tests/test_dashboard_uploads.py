@@ -17,7 +17,7 @@ from pounding.case.case import case_from_dict
 from pounding.display_units import display
 from pounding.hazard.accelerograms import Accelerogram, write_at2
 from pounding.hazard.excitation import ground_accelerations
-from pounding.presets import preset_text
+from pounding.presets import preset_text, preset_title
 from pounding.report import MonteCarloPoint, monte_carlo_check
 from tests.browser import CANVAS_COUNT_JS, UPDATE_TIMEOUT
 from tests.test_dashboard import DEFAULT, _choose, _input, _open, _shown, _type, _wait_text
@@ -117,7 +117,7 @@ def test_five_uploaded_records_run_their_own_monte_carlo(dashboard, tmp_path):
     dashboard.locator(".mc-verdict").wait_for(timeout=60_000)
     study = MonteCarloPoint.from_result(simulate(case))  # each of the 5 records once
     assert study.records == 5
-    _wait_text(dashboard, ".mc-verdict", monte_carlo_check(result.force_expected, study).text)
+    _wait_text(dashboard, ".mc-verdict", monte_carlo_check(result, study).text)
     text = _page_text(dashboard)
     assert "Monte Carlo done: 5 records." in text and "--records" not in text and "0..49" not in text
     assert dashboard.errors == []
@@ -144,7 +144,7 @@ def test_an_uploaded_case_file_is_named_by_its_file_in_the_headline_and_the_repo
     assert "<title>Pounding report: my-house</title>" in report and "Inputs: the case my-house.toml." in report
     assert f"preset {DEFAULT}" not in report
     dashboard.locator(".bk-input-group", has=dashboard.get_by_text("case (preset)")).locator("select").first.select_option(
-        "section6-T2-0.4")
+        label=preset_title("section6-T2-0.4"))  # as a user picks it: by its title
     _wait_text(dashboard, ".fe-recommended", shown.force(estimate(load_case("section6-T2-0.4")).force_expected))
     assert dashboard.get_by_text("Loaded my-house.toml.").count() == 0
     assert _text(dashboard.locator(".headline .case-name")) == "section6-T2-0.4"
@@ -183,7 +183,7 @@ def test_a_monte_carlo_verdict_is_shown_at_its_own_gap_only(dashboard):
     dashboard.locator(".bk-tab", has_text="Monte Carlo").first.click()
     _type(dashboard, "records", "10")
     dashboard.get_by_role("button", name="Run Monte Carlo").click()
-    verdict = monte_carlo_check(estimate(case).force_expected, MonteCarloPoint.from_result(simulate(case, records=10, seed=1))).text
+    verdict = monte_carlo_check(estimate(case), MonteCarloPoint.from_result(simulate(case, records=10, seed=1))).text
     _wait_text(dashboard, ".mc-verdict", verdict, timeout=60_000)
     _type(dashboard, "gap [mm]", "30")
     data = tomllib.loads(preset_text(DEFAULT))

@@ -48,6 +48,8 @@ class Case:
         At most one per pair of floors, in the case's order (each names the
         buildings it joins: ``Contact.between``).
     name, description : str
+    title : str
+        A short human name for lists (a preset's: "Section 5 (one storey each), T2 = 0.4 s"); optional.
     units : str
         The unit system the case was written in (for display only: every
         quantity held here is SI).
@@ -64,6 +66,7 @@ class Case:
     description: str = ""
     units: str = "SI"
     hazard: DesignSpectrum | RecordedMotions | None = None
+    title: str = ""
 
     def __post_init__(self):
         if not isinstance(self.excitation, Excitation):
@@ -77,7 +80,7 @@ class Case:
         check_row_size(self.buildings)
         contacts = (self.contacts,) if isinstance(self.contacts, Contact) else self.contacts
         object.__setattr__(self, "contacts", _as_tuple(contacts, "contacts", "Contact"))
-        for key in ("name", "description"):
+        for key in ("name", "description", "title"):
             if not isinstance(getattr(self, key), str):
                 raise CaseError(key, f"must be a string, got {described(getattr(self, key))}")
         if not (isinstance(self.units, str) and self.units in UNIT_SYSTEMS):
@@ -200,7 +203,7 @@ def _check_record_lengths(motions: RecordedMotions, buildings) -> None:
 # Every number is checked here as the file writes it, in the file's units, and
 # only then converted to SI: an error quotes the key and the value as written.
 
-_TOP_KEYS = {"units", "name", "description", "excitation", "buildings", "contact", "contacts"}
+_TOP_KEYS = {"units", "name", "title", "description", "excitation", "buildings", "contact", "contacts"}
 _BUILDING_KEYS = {"damping_ratio", "storeys"}
 _STOREY_KEYS = {"mass", "stiffness", "period", "damping", "bouc_wen", "hysteresis"}
 _BOUC_WEN_KEYS = {"alpha", "A", "beta", "gamma", "n"}
@@ -392,6 +395,7 @@ def case_from_dict(data: Mapping, name: str = "case", base_directory: str | os.P
         contacts=contacts,
         name=_text(data, "name", name),
         description=_text(data, "description", ""),
+        title=_text(data, "title", ""),
         units=units.name,
     )
 

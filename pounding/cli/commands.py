@@ -19,10 +19,10 @@ from pounding.cli.progress import progress_bar
 
 
 def _cases(_args) -> int:
-    from pounding.presets import preset_description, preset_names
+    from pounding.presets import preset_description, preset_names, preset_title
 
     for name in preset_names():
-        print(name)
+        print(f"{name}: {preset_title(name)}")
         print(f"    {preset_description(name)}")
     return 0
 

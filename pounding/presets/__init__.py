@@ -8,7 +8,7 @@ from __future__ import annotations
 import tomllib
 from importlib import resources
 
-__all__ = ["preset_description", "preset_names", "preset_text"]
+__all__ = ["preset_description", "preset_names", "preset_text", "preset_title"]
 
 
 def _files() -> dict:
@@ -30,3 +30,8 @@ def preset_text(name: str) -> str | None:
 def preset_description(name: str) -> str:
     """The one-paragraph description of a built-in case."""
     return str(tomllib.loads(preset_text(name)).get("description", ""))
+
+
+def preset_title(name: str) -> str:
+    """The short human name of a built-in case, for lists: "Section 5 (one storey each), T2 = 0.4 s"."""
+    return str(tomllib.loads(preset_text(name))["title"])

@@ -175,8 +175,8 @@ def key_label(key: str) -> str:
 def normalized_case_file(data: dict) -> dict:
     """A copy of the parsed case file ``data`` with every default the parser would take written in,
     and a one-storey building's mass, stiffness and period all given (from the two the file gives).
-    ``name`` and ``description`` are left out: they change no number of the case."""
-    data = copy.deepcopy({key: value for key, value in data.items() if key not in ("name", "description")})
+    ``name``, ``title`` and ``description`` are left out: they change no number of the case."""
+    data = copy.deepcopy({key: value for key, value in data.items() if key not in ("name", "title", "description")})
     excitation = data.get("excitation")
     if isinstance(excitation, dict):
         if isinstance(excitation.get("records"), str):

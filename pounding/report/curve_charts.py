@@ -14,7 +14,7 @@ from pounding.display_units import display
 from pounding.output import write_atomic
 from pounding.units import STANDARD_GRAVITY
 
-__all__ = ["BAND_LABEL", "band_label", "fragility_chart", "spectrum_chart", "write_chart_page"]
+__all__ = ["BAND_LABEL", "band_label", "fragility_chart", "legend_below", "spectrum_chart", "write_chart_page"]
 
 BAND_LABEL = "closed form, measured accuracy"
 """The legend of a closed-form curve's band of measured accuracy; :func:`band_label` adds its regimes."""
@@ -25,6 +25,27 @@ def band_label(ranges) -> str:
     form, measured accuracy (frequent, moderate gap, rare)", each regime once, in the curve's order."""
     regimes = list(dict.fromkeys(r.regime for r in ranges))
     return f"{BAND_LABEL} ({', '.join(regimes)})" if regimes else BAND_LABEL
+
+
+LEGEND_ROW = 18
+"""[px] Height of one row of a legend under a plot (10 px text, 14 px glyphs)."""
+
+
+def legend_below(plot, columns: int = 1) -> None:
+    """Put every legend of ``plot`` under its frame, ``columns`` entries a row, and make the plot taller by the rows
+    it takes, so that the frame keeps its size: inside the frame a legend covers data (a hysteresis loop, a curve),
+    and beside it long entries take the frame's width."""
+    import math
+
+    for legend in list(plot.legend):
+        for side in (plot.center, plot.right, plot.left, plot.above, plot.below):
+            if legend in side:
+                side.remove(legend)
+        legend.location, legend.orientation, legend.ncols = "top_left", "horizontal" if columns > 1 else "vertical", columns
+        legend.label_text_font_size, legend.glyph_height, legend.label_height = "10px", 14, 14
+        legend.spacing, legend.padding, legend.margin = 4, 4, 4
+        plot.add_layout(legend, "below")
+        plot.height += math.ceil(len(legend.items) / columns) * LEGEND_ROW + 16
 
 
 SPECTRUM_RECORDS_SHOWN = 5
@@ -129,8 +150,7 @@ def fragility_chart(curve, units: str = "SI"):
         header += ["P Monte Carlo", "95 % interval"]
         rows = [r + [f"{k / mc.records:.3f}", f"{lo:.3f}-{hi:.3f}"] for r, k, (lo, hi) in zip(rows, exceeding, intervals)]
     for plot in (probability, forces):
-        plot.legend.location = "top_left"
-        plot.legend.label_text_font_size = "8pt"
+        legend_below(plot)
     fits = []
     for label, fit in (("closed form", curve.lognormal), ("Monte Carlo", curve.lognormal_monte_carlo if mc else None)):
         if fit is not None:
@@ -176,12 +196,7 @@ def spectrum_chart(spectrum, units: str = "SI"):
         header.append(f"E[F_max] measured accuracy [{shown.force_unit}]")
         rows = [r + [b] for r, b in zip(rows, bands)]
     plot.width = 900
-    plot.legend.label_text_font_size = "8pt"
-    legend = plot.legend[0]
-    plot.center.remove(legend)
-    plot.add_layout(legend, "below")  # beside the plot its long entries (the band's regimes) would squeeze it
-    legend.orientation, legend.ncols = "horizontal", 2
-    plot.height += 80
+    legend_below(plot, columns=2)
     note = (f"Case {spectrum.case.name}: each building made stiffer or softer to the periods shown (masses, yield drifts, "
             "damping ratio, gap, restitution and ground motion held). Jankowski's pounding force response spectrum is "
             "the peak force of one record against the period; this is its mean and 84th percentile over the random "

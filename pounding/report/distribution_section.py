@@ -10,6 +10,7 @@ import numpy as np
 
 from pounding import defaults
 from pounding.display_units import display
+from pounding.report.curve_charts import legend_below
 from pounding.report.snapshot import MonteCarloPoint, Snapshot
 from pounding.report.summary import matching_study
 from pounding.simulation.result import quantile_interval
@@ -41,7 +42,7 @@ def distribution_figure(snapshot: Snapshot, units: str = "SI"):
         steps = np.arange(1, ordered.size + 1) / ordered.size
         plot.step(np.concatenate([[0.0], ordered]) / shown.force_scale, np.concatenate([[0.0], steps]), mode="after",
                   color="#ff7f0e", legend_label=f"Monte Carlo, {study.records} records")
-    plot.legend.location = "bottom_right"
+    legend_below(plot, columns=2)
     return plot
 
 

@@ -75,7 +75,6 @@ def report_figures(snapshot: Snapshot, units: str = "SI") -> list[ReportFigure]:
                 "record (grey), their mean (red), the design spectrum (black) and the expected spectrum of the process "
                 "the closed form takes (dashed).", (scaled,)))
         shown.append(ReportFigure("The ground motion's spectrum", _hazard_caption(snapshot), (hazard,)))
-    _legend_below(plots.gap)
     shown.append(ReportFigure("Expected extreme force and probability of pounding against the gap", _gap_caption(snapshot, d), (plots.gap,)))
     shown.append(ReportFigure(
         "Power spectral densities of the ground acceleration and of the relative velocity",
@@ -111,17 +110,6 @@ def _checked_study(snapshot: Snapshot) -> MonteCarloPoint | None:
     if snapshot.check is None or matching_study(snapshot) is not None:
         return None
     return MonteCarloPoint.from_check(snapshot.check, snapshot.case.contact.gap)
-
-
-def _legend_below(plot) -> None:
-    """The legend under the plot in two columns, as the dashboard has it: beside it, its long entries (the band's
-    regimes) would take half the page's width from the plot."""
-    legend = plot.legend[0]
-    if legend in plot.right:
-        plot.right.remove(legend)
-    plot.add_layout(legend, "below")
-    legend.orientation, legend.ncols, legend.label_text_font_size, legend.spacing, legend.padding = "horizontal", 2, "10px", 8, 4
-    plot.height += 90
 
 
 def _pga_g(snapshot: Snapshot) -> float:

@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 from pounding.display_units import display
-from pounding.report.curve_charts import BAND_LABEL, band_label
+from pounding.report.curve_charts import BAND_LABEL, band_label, legend_below
 from pounding.report.snapshot import Snapshot
 from pounding.simulation.monte_carlo import DesignGap, TimeHistory
 from pounding.units import STANDARD_GRAVITY
@@ -79,7 +79,7 @@ class Figures:
         g.scatter("gap", "fraction", source=src["mc"], color="#2ca02c", marker="triangle", size=8, y_range_name="probability",
                   legend_label="Monte Carlo pounding fraction")
         g.legend.click_policy = "hide"
-        g.add_layout(g.legend[0], "right")  # beside the plot: the curves fill its corners
+        legend_below(g, columns=2)  # the curves fill the frame's corners; beside it, the band's long entry squeezes it
         # The Monte Carlo entries show only when there is a study to show (see fill).
         self._monte_carlo_legend = {
             item.label.value: item for item in g.legend[0].items if item.label.value.startswith("Monte Carlo")
@@ -90,11 +90,10 @@ class Figures:
         self._band_legend = next(item for item in g.legend[0].items if item.label.value == BAND_LABEL)
         self.gap = g
 
-        self.psd_ground = figure(title="Ground acceleration PSD (two-sided)", height=300, x_axis_type="log", y_axis_type="log", **common)
+        self.psd_ground = figure(title="Ground acceleration PSD", height=300, x_axis_type="log", y_axis_type="log", **common)
         self.psd_ground.line("omega", "ground", source=src["psd_ground"], color="#7f7f7f", line_width=2)
-        self.psd_velocity = figure(
-            title="Relative velocity PSD at the contact floors (linearized pair)", height=300, x_axis_type="log", y_axis_type="log", **common
-        )
+        self.psd_velocity = figure(title="Relative velocity PSD, contact floors", height=300, x_axis_type="log",
+                                   y_axis_type="log", **common)
         self.psd_velocity.line("omega", "velocity", source=src["psd_velocity"], color="#1f77b4", line_width=2)
         for f in (self.psd_ground, self.psd_velocity):
             f.xaxis.axis_label = "circular frequency [rad/s]"
@@ -106,8 +105,8 @@ class Figures:
                    legend_label="equivalent linear")
             h.line("drift", "force", source=src[f"hysteresis{b}"], color="#1f77b4", legend_label="Bouc-Wen")
             h.scatter("drift", "force", source=src[f"impact{b}"], color="#d62728", size=4, legend_label="during impact")
-            h.legend.location = "top_left"
             h.legend.click_policy = "hide"
+            legend_below(h, columns=2)  # inside the frame it covered the loops
             self.hysteresis.append(h)
         self.contact = figure(title="Pounding force during the record", height=230, **common)
         self.contact.line("time", "force", source=src["contact"], color="#d62728")
@@ -115,10 +114,10 @@ class Figures:
         self.relative = figure(title="Relative displacement of the contact floors, x1 - x2", height=200, x_range=self.contact.x_range, **common)
         self.relative.line("time", "relative", source=src["relative"], color="#1f77b4", legend_label="x1 - x2")
         self.relative.line("time", "gap", source=src["gap_line"], color="#d62728", line_dash="dashed", legend_label="gap")
-        self.relative.legend.location = "top_left"
+        legend_below(self.relative, columns=2)
         self.ground = figure(title="Ground acceleration of the record", height=180, x_range=self.contact.x_range, **common)
         self.ground.line("time", "acceleration", source=src["ground"], color="#7f7f7f")
-        self.ground.yaxis.axis_label = "ground acceleration [g]"
+        self.ground.yaxis.axis_label = "acceleration [g]"
         for plot in (self.contact, self.relative, self.ground):
             plot.xaxis.axis_label = "time [s]"
 
@@ -135,8 +134,8 @@ class Figures:
         # axis labels
         self.gap.xaxis.axis_label = f"gap [{d.length_unit}]"
         self.gap.yaxis[0].axis_label = f"expected extreme force [{d.force_unit}]"
-        self.psd_ground.yaxis.axis_label = f"S_g [{d.length_unit}^2/s^3]"
-        self.psd_velocity.yaxis.axis_label = f"S_V [({d.velocity_unit})^2 s]"
+        self.psd_ground.yaxis.axis_label = f"two-sided PSD [{d.length_unit}^2/s^3]"
+        self.psd_velocity.yaxis.axis_label = f"two-sided PSD [({d.velocity_unit})^2 s]"
         for h in self.hysteresis:
             h.xaxis.axis_label = f"storey drift [{d.length_unit}]"
             h.yaxis.axis_label = f"restoring force [{d.force_unit}]"

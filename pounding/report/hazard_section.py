@@ -9,6 +9,7 @@ import numpy as np
 from pounding import defaults
 from pounding.case.case import Case
 from pounding.display_units import display
+from pounding.report.curve_charts import legend_below
 from pounding.hazard.response_spectra import pseudo_acceleration_spectrum
 from pounding.hazard.sources import DesignSpectrum
 from pounding.simulation.ground_motion import ground_motion_batches
@@ -59,8 +60,8 @@ def hazard_figure(case: Case, seed: int = defaults.SEED, units: str = "SI"):
                       legend_label="filter bank (the closed form's)")
         plot.line(omega, fitted.spectrum.psd(omega) / shown.length_scale**2, line_width=2, line_dash="dashed",
                   color="#ff7f0e", legend_label=f"{fitted.to_dict()['spectrum']} (a description)")
-    plot.legend.location = "top_right"
     plot.legend.click_policy = "hide"
+    legend_below(plot, columns=2)
     return plot
 
 
@@ -94,6 +95,6 @@ def scaled_records_figure(case: Case):
                                          excitation.cutoff_frequency)
     plot.line(periods, expected * in_g, line_dash="dashed", color="#1f77b4", line_width=2,
               legend_label="the closed form's process (expected Sa)")
-    plot.legend.location = "top_right"
     plot.legend.click_policy = "hide"
+    legend_below(plot, columns=2)
     return plot

@@ -49,7 +49,7 @@ def _same_numbers(a, b) -> bool:
         if type(a) is not type(b):
             return False
         return all(_same_numbers(getattr(a, f.name), getattr(b, f.name)) for f in dataclasses.fields(a)
-                   if f.name not in ("name", "description", "units"))
+                   if f.name not in ("name", "title", "description", "units"))
     if isinstance(a, (tuple, list)) and isinstance(b, (tuple, list)):
         return len(a) == len(b) and all(_same_numbers(x, y) for x, y in zip(a, b))
     if isinstance(a, float) and isinstance(b, float):

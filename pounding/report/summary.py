@@ -13,6 +13,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from pounding import defaults
+from pounding.closed_form.estimator import Estimate
 from pounding.display_units import Display, display
 from pounding.report.snapshot import MonteCarloPoint, Snapshot
 from pounding.simulation.plan import MonteCarloPlan
@@ -21,6 +22,7 @@ from pounding.studies.check import (
     capacity_check_sentence,
     check_estimate,
     check_gap_for_capacity,
+    closed_form_agrees,
     unpounded_bound,
 )
 
@@ -237,39 +239,51 @@ def summary_html(snapshot: Snapshot, units: str = "SI") -> str:
             + "".join(cells) + "</tbody></table>" + warnings)
 
 
-# --- the dashboard's older verdict on a study ----------------------------------------------------
+# --- the verdict on one study of the page -----------------------------------------------------------
 
 
 @dataclass(frozen=True)
 class MonteCarloCheck:
-    """Where a closed-form E[F_max] lies against a Monte Carlo study of the same case: the dashboard's headline
-    (dashboard/headline.py) until it takes the library's :class:`~pounding.studies.check.EstimateCheck`, which the
-    report's verdict is (:func:`with_check`); to be removed then.
+    """Whether a closed-form E[F_max] agrees with one Monte Carlo study of the same case, by the rule of every
+    verdict (:func:`~pounding.studies.check.closed_form_agrees`): the dashboard's line on a study it ran.
 
     Attributes
     ----------
-    within : bool or None
-        True inside the study's 95 % confidence interval of the mean F_max; None when the
-        study has no interval (too few records).
+    agrees : bool
+        The rule's answer: inside the study's 95 % interval of the mean F_max or within
+        ``defaults.CHECK_TOLERANCE`` of that mean (where no record pounded: a probability of pounding the records allow).
     relative : float
         (closed form - Monte Carlo mean) / Monte Carlo mean [-]; nan when the mean is 0.
     text : str
-        One line: "within the Monte Carlo 95 % interval", or "below it: 15 % under the Monte Carlo mean".
+        One clause: "the estimate agrees: inside the 95 % interval, 3 % under the mean".
     """
 
-    within: bool | None
+    agrees: bool
     relative: float
     text: str
 
 
-def monte_carlo_check(force_expected: float, study: MonteCarloPoint) -> MonteCarloCheck:
-    """Compare the closed form's E[F_max] [N] with the mean F_max [N] of ``study`` and its 95 % interval."""
+def monte_carlo_check(estimate: Estimate, study: MonteCarloPoint) -> MonteCarloCheck:
+    """The closed form's ``estimate`` against ``study``, a Monte Carlo of the same case (its mean F_max [N] and
+    95 % interval [N]): :func:`~pounding.studies.check.closed_form_agrees` and why, in words."""
     mean = study.force_max_mean
-    relative = (force_expected - mean) / mean if mean > 0 else math.nan
-    share = f"{100 * abs(relative):.0f} % {'under' if relative < 0 else 'over'} the Monte Carlo mean"
-    if not (math.isfinite(study.force_low) and math.isfinite(study.force_high)):
-        return MonteCarloCheck(None, relative, f"no 95 % interval from {study.records} record(s); {share}")
-    if study.force_low <= force_expected <= study.force_high:
-        return MonteCarloCheck(True, relative, f"within the Monte Carlo 95 % interval ({share})")
-    side = "below" if force_expected < study.force_low else "above"
-    return MonteCarloCheck(False, relative, f"{side} the Monte Carlo 95 % interval: {share}")
+    agrees = closed_form_agrees(estimate, mean, (study.force_low, study.force_high), study.records)
+    verdict = "the estimate agrees" if agrees else "the estimate does not agree"
+    if not mean > 0:
+        allowed = 100 * unpounded_bound(study.records)
+        return MonteCarloCheck(agrees, math.nan, f"{verdict}: no record pounded, so pounding under {allowed:.1f} % (95 % "
+                               f"confidence), and its probability of pounding is {100 * estimate.pounding_probability:.1f} %")
+    force = estimate.force_expected
+    relative = force / mean - 1.0
+    share = f"{100 * abs(relative):.0f} % {'under' if relative < 0 else 'over'} the mean"
+    tolerance = f"{100 * defaults.CHECK_TOLERANCE:g} %"
+    low, high = study.force_low, study.force_high
+    if not math.isfinite(high - low):
+        where = f"within {tolerance}" if agrees else f"more than {tolerance}"
+        return MonteCarloCheck(agrees, relative, f"{verdict}: {share}, {where} (one record: no 95 % interval)")
+    if low <= force <= high:
+        return MonteCarloCheck(agrees, relative, f"{verdict}: inside the 95 % interval, {share}")
+    side = "below" if force < low else "above"
+    if agrees:
+        return MonteCarloCheck(agrees, relative, f"{verdict}: {share}, within {tolerance} ({side} the 95 % interval)")
+    return MonteCarloCheck(agrees, relative, f"{verdict}: {side} the 95 % interval and {share}, more than {tolerance}")

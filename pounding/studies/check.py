@@ -44,7 +44,7 @@ from pounding.simulation.plan import MonteCarloPlan, as_plan
 from pounding.simulation.result import SimulationResult, mean_interval, quantile_interval
 
 __all__ = ["EstimateCheck", "RowCheck", "agrees", "capacity_check_sentence", "check_estimate", "check_gap_for_capacity",
-           "check_row", "contact_check", "monte_carlo_of", "unpounded_bound"]
+           "check_row", "closed_form_agrees", "contact_check", "monte_carlo_of", "unpounded_bound"]
 
 _SMALLEST_CHUNK = 25
 """Fewest records of a chunk after the first, where the interval asks for only a few more."""
@@ -372,12 +372,37 @@ def contact_check(estimate: Estimate, peaks, result: SimulationResult, free_peak
 
 def agrees(estimate, force_max: np.ndarray) -> bool:
     """Whether the closed form's E[F_max] and probability of pounding (an :class:`Estimate`'s, or a
-    :class:`~pounding.closed_form.row.RowEstimate`'s) agree with the records' per-record F_max [N] (the module's
-    docstring)."""
-    mean, force = float(np.mean(force_max)), estimate.force_expected
+    :class:`~pounding.closed_form.row.RowEstimate`'s) agree with the records' per-record F_max [N]:
+    :func:`closed_form_agrees` of their mean and its 95 % interval."""
+    force_max = np.asarray(force_max, dtype=float)
+    return closed_form_agrees(estimate, float(np.mean(force_max)), mean_interval(force_max), force_max.size)
+
+
+def closed_form_agrees(estimate, mean: float, interval: tuple[float, float], records: int) -> bool:
+    """Whether the closed form's E[F_max] agrees with a Monte Carlo study of its case: the one rule of every verdict
+    (the module's docstring).
+
+    Parameters
+    ----------
+    estimate : Estimate or RowEstimate
+        The closed form: its ``force_expected`` [N], and its ``pounding_probability`` [-] where no record pounded.
+    mean : float
+        The records' mean F_max [N] (0 where none pounded).
+    interval : tuple of float
+        The 95 % interval of that mean [N]; not finite from one record.
+    records : int
+        How many records the study ran.
+
+    Returns
+    -------
+    bool
+        Inside the interval or within ``defaults.CHECK_TOLERANCE`` of the mean; where the mean is 0, a probability
+        of pounding no larger than :func:`unpounded_bound` of ``records``.
+    """
+    force = estimate.force_expected
     if mean == 0.0:
-        return estimate.pounding_probability <= unpounded_bound(force_max.size)
-    low, high = mean_interval(force_max)
+        return bool(estimate.pounding_probability <= unpounded_bound(records))
+    low, high = interval
     return bool(low <= force <= high and math.isfinite(high - low)) or abs(force / mean - 1.0) <= defaults.CHECK_TOLERANCE
 
 
