@@ -53,8 +53,22 @@ _MARGIN = 1.1
 enough that one more chunk usually reaches the precision."""
 
 
+class _ForceAnswer:
+    """The force a check stands behind: the closed form's where it agrees with the records, otherwise theirs."""
+
+    @property
+    def force_answer(self) -> float:
+        """The E[F_max] the tool stands behind [N]: the closed form's where it agrees, otherwise the records' mean."""
+        return self.closed_form_force if self.agrees else self.force_max_mean
+
+    @property
+    def answer_source(self) -> str:
+        """Where :attr:`force_answer` comes from: "closed form" or "monte carlo"."""
+        return "closed form" if self.agrees else "monte carlo"
+
+
 @dataclass(frozen=True)
-class EstimateCheck:
+class EstimateCheck(_ForceAnswer):
     """A closed-form estimate against a Monte Carlo study of the same case (:func:`check_estimate`).
 
     Attributes
@@ -100,16 +114,6 @@ class EstimateCheck:
     closed_form_pounding_probability: float
     target_probability: float
     closed_form_quantiles: dict = dataclasses.field(default_factory=dict)
-
-    @property
-    def force_answer(self) -> float:
-        """The E[F_max] the tool stands behind [N]: the closed form's where it agrees, otherwise the records' mean."""
-        return self.closed_form_force if self.agrees else self.force_max_mean
-
-    @property
-    def answer_source(self) -> str:
-        """Where :attr:`force_answer` comes from: "closed form" or "monte carlo"."""
-        return "closed form" if self.agrees else "monte carlo"
 
     @property
     def gap_answer(self) -> float:
@@ -253,7 +257,7 @@ def check_estimate(estimate: Estimate, plan: MonteCarloPlan | int | None = None,
 
 
 @dataclass(frozen=True)
-class RowCheck:
+class RowCheck(_ForceAnswer):
     """A case of several contacts against one Monte Carlo study of the whole case (:func:`check_row`): every contact
     acts in the same time histories.
 
@@ -276,16 +280,6 @@ class RowCheck:
     agrees: bool
     closed_form_force: float
     contacts: tuple[EstimateCheck, ...]
-
-    @property
-    def force_answer(self) -> float:
-        """The E[F_max] over all contacts the tool stands behind [N]: the closed form's where it agrees."""
-        return self.closed_form_force if self.agrees else self.force_max_mean
-
-    @property
-    def answer_source(self) -> str:
-        """Where :attr:`force_answer` comes from: "closed form" or "monte carlo"."""
-        return "closed form" if self.agrees else "monte carlo"
 
     def to_dict(self) -> dict:
         """JSON-ready, SI units: the study, the verdict over all contacts, and each contact's (``contacts``)."""
