@@ -173,7 +173,12 @@ def run_spectrum(args) -> int:
         return 0
     mc = spectrum.monte_carlo
     second = f"T2 = {args.period_ratio:g} x T1" if args.period2 is None else f"T2 = {args.period2:g} s"
-    print(f"case           {spectrum.case.name}; {second}")
+    others = len(spectrum.case.buildings) - 2
+    held = ("" if not others else "; building 3 keeps its period" if others == 1
+            else f"; buildings 3 to {others + 2} keep their periods")
+    print(f"case           {spectrum.case.name}; {second}{held}")
+    if len(spectrum.case.contacts) > 1:
+        print("               the forces are the largest over all contacts")
     if mc is not None:
         print(f"Monte Carlo    {mc.records} records a period" + ("" if spectrum.case.recorded else f", seed {mc.seed}"))
     header = f"{'T1 [s]':>7}  {'T2 [s]':>7}  {'E[F_max]':>12}  {'F_84':>12}  {'P(pounding)':>11}"
