@@ -356,3 +356,18 @@ def test_each_contacts_design_gap_is_its_free_pairs():
         np.testing.assert_allclose(gap.peaks, alone.peaks, rtol=1e-3)
     with pytest.raises(CaseError, match="^contacts: "):
         design_gap(case, 0.9, records=2)
+
+
+def test_neighbours_that_move_alike_are_refused_by_the_closed_form_naming_the_contact():
+    """Identical neighbours never pound alone, but in a row the other contacts' impacts can make them pound: the
+    closed form cannot say how hard, and says so (the Monte Carlo of the row does: they pound)."""
+    from pounding import estimate
+    from pounding.studies.fragility import fragility_curve
+
+    data = tomllib.loads(ROW)
+    data["buildings"][1] = data["buildings"][0]
+    case = case_from_dict(data)
+    for attempt in (lambda: estimate(case), lambda: fragility_curve(case, 1e6, [1.0, 2.0])):
+        with pytest.raises(CaseError, match=r"^contacts\.1: buildings 1 and 2 move alike.*use simulate"):
+            attempt()
+    assert simulate(case, records=4, seed=1).contacts[0].impacts.sum() > 0  # the interaction the closed form lacks

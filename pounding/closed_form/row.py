@@ -29,6 +29,7 @@ import numpy as np
 
 from pounding import defaults
 from pounding.case.case import Case
+from pounding.errors import CaseError
 from pounding.closed_form.force_distribution import ForceDistribution, force_distribution_of
 from pounding.closed_form.linearization import linearize_row
 from pounding.closed_form.pair import LinearizedPair
@@ -40,7 +41,9 @@ __all__ = ["SAFE_SIDE", "RowEstimate", "contact_pairs", "force_distribution_and_
 
 def contact_pairs(case: Case) -> tuple[LinearizedPair, ...]:
     """Each contact's two buildings as a :class:`~pounding.closed_form.pair.LinearizedPair`, in the case's order,
-    each building linearized once (:func:`~pounding.closed_form.linearization.linearize_row`)."""
+    each building linearized once (:func:`~pounding.closed_form.linearization.linearize_row`). :class:`CaseError`
+    naming the contact where its two buildings move alike: alone they never pound, but in the case the impacts at
+    the other contacts can make them, which the closed form cannot say."""
     buildings = linearize_row(case)
     first = {}  # the first pair of each two buildings: the others share its state space
     pairs = []
@@ -49,6 +52,10 @@ def contact_pairs(case: Case) -> tuple[LinearizedPair, ...]:
             pairs.append(first[contact.between].for_contact(case.pair(index)))
         else:
             pairs.append(first.setdefault(contact.between, LinearizedPair(case.pair(index), tuple(buildings[b - 1] for b in contact.between))))
+        if pairs[-1].moves_alike:
+            left, right = contact.between
+            raise CaseError(f"contacts.{index + 1}", f"buildings {left} and {right} move alike: alone they never pound, but "
+                            "the impacts at the other contacts can make them; the closed form cannot say how hard: use simulate")
     return tuple(pairs)
 
 
