@@ -17,6 +17,8 @@ and the warnings it states.
 - other loops (beta_share below 1.5): the grid's and :mod:`validation.storey_accuracy`'s
   draws, by regime;
 - recorded suites: :func:`recorded_suites_force` (``--recorded-suites`` measures only these);
+- several contacts: :func:`validation.row_accuracy.several_contacts` (``python3 -m validation.row_accuracy
+  --update`` measures only these);
 - the gap for 95 %: the draws against 400 records (seed 9) of their free
   motion (:func:`validation.out_of_sample.required_gaps`); the yielding kinds
   are the one-storey pairs, split by whether their floors move together
@@ -33,7 +35,6 @@ from __future__ import annotations
 import argparse
 import datetime
 import json
-import subprocess
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -53,16 +54,17 @@ from .record_synthesis import (
     design_gap_cases,
     design_gap_fraction,
 )
+from .entries import DEFAULT_OUTPUT, ROOT, force_entry, git_commit
+from .row_accuracy import SEVERAL_CONTACTS_ABOUT, several_contacts
 from .sizes import first
 from .storey_accuracy import CASES as STOREY_CASES
 from .storey_accuracy import other_loop_errors
 from .storey_accuracy import rows as storey_rows
 
-ROOT = Path(__file__).resolve().parent.parent
-DEFAULT_OUTPUT = ROOT / "pounding" / "data" / "accuracy.json"
 DEFAULT_LISTING = ROOT / "docs" / "accuracy-cases.md"
 SEEDS = (2026, 2027, 2028, 2029)
 RECORDS, SEED = 300, 11  # the Kanai-Tajimi force's Monte Carlo
+ROW_RECORDS = 200  # several contacts: validation/row_accuracy.py
 GAP_RECORDS = 400  # the required gap's, seed GAP_SEED
 TARGET = 0.95
 YIELDING_FAMILIES = ("SDOF", "SDOF modulated")
@@ -72,21 +74,6 @@ ELASTIC_FAMILIES = ("elastic", "elastic modulated")
 CLOUGH_PENZIEN_LABELS = ("gap below sigma_X", "rare, yielding", "rare, elastic")
 ABOUT = ("How far the recommended closed-form force was measured from Monte Carlo, by regime, and the fraction of "
          "simulated records pounding at the gap given for 95 % no pounding. Read by pounding.closed_form.regimes; see docs/accuracy.md.")
-
-
-def force_entry(errors) -> dict:
-    """cases, within 10 %, median |error| and the range of ``errors`` (estimate / Monte Carlo - 1);
-    None where there is no case (only in a reduced run)."""
-    errors = np.asarray(errors, dtype=float)
-    if not errors.size:
-        return {"cases": 0, "within_10_percent": 0, "median_abs_error": None, "low": None, "high": None}
-    return {
-        "cases": int(errors.size),
-        "within_10_percent": int(np.sum(np.abs(errors) <= 0.10)),
-        "median_abs_error": round(float(np.median(np.abs(errors))), 3),
-        "low": round(float(errors.min()), 2),
-        "high": round(float(errors.max()), 2),
-    }
 
 
 def gap_entry(fractions) -> dict:
@@ -213,15 +200,6 @@ def required_gap(seeds, cases: int | None, gap_records: int, design_records: int
     }
 
 
-def git_commit() -> str:
-    """``git rev-parse --short HEAD`` of the repository, or "unknown"."""
-    try:
-        out = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True, check=True, timeout=10)
-    except (OSError, subprocess.SubprocessError):
-        return "unknown"
-    return out.stdout.strip() or "unknown"
-
-
 def accuracy_document(seeds=SEEDS, cases: int | None = None, records: int = RECORDS, gap_records: int = GAP_RECORDS,
                       clough_penzien_records: int = CLOUGH_PENZIEN_RECORDS, design_records: int = DESIGN_RECORDS,
                       grid_cases: list[GridCase] | None = None) -> dict:
@@ -229,6 +207,7 @@ def accuracy_document(seeds=SEEDS, cases: int | None = None, records: int = RECO
     :func:`grid` already measured."""
     seeds = [int(seed) for seed in seeds]
     grid_cases = grid(cases, records) if grid_cases is None else grid_cases
+    rows = several_contacts(cases, ROW_RECORDS if cases is None else records)
     paper, engineer = (sum(c.source == source for c in grid_cases) for source in ("paper's storeys", "engineer's storeys"))
     commit = git_commit()
     draws = ", ".join(str(seed) for seed in seeds)
@@ -253,7 +232,9 @@ def accuracy_document(seeds=SEEDS, cases: int | None = None, records: int = RECO
             "clough-penzien": clough_penzien_force(cases, clough_penzien_records, grid_cases),
             "other loops": other_loops_force(cases, records, grid_cases),
             "recorded suites": recorded_suites_force(cases, SUITE_RECORDS if cases is None else records),
+            **rows["force"],
         },
+        "several_contacts": {"about": f"{SEVERAL_CONTACTS_ABOUT}; at commit {commit}", **rows["section"]},
         "recorded_suites": {"about": f"{RECORDED_SUITES_ABOUT}; at commit {commit}"},
         "other_loops": {"about": (f"force['other loops']: yielding storeys with beta_share below 1.5 (Wen's symmetric 0.5 "
                                   f"and 1), by regime: the grid's storeys given the engineer's way and "

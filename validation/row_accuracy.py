@@ -29,11 +29,11 @@ from pounding.closed_form.regimes import ROW_KINDS, row_kind
 from pounding.closed_form.row import contact_pairs, largest_force_distribution
 from pounding.studies.row_grid import row_cases
 
-from .accuracy_data import DEFAULT_OUTPUT, force_entry, git_commit
+from .entries import DEFAULT_OUTPUT, force_entry, git_commit
 from .sizes import first
 
 RECORDS, SEED = 200, 11
-ABOUT = ("force['several contacts']: a case of several contacts, the largest force over all contacts, closed form "
+SEVERAL_CONTACTS_ABOUT = ("force['several contacts']: a case of several contacts, the largest force over all contacts, closed form "
          "(each contact's pair, contacts independent) against Monte Carlo of the whole case, by kind; force['several "
          "contacts, each contact']: each contact's force alike; interaction: each contact's Monte Carlo mean in the "
          "whole case over its pair's alone: validation/row_accuracy.py on pounding.studies.row_grid's 48 cases")
@@ -100,24 +100,32 @@ def print_tables(rows: list[dict], measured: dict) -> None:
                   f"{inter if of == 'largest' else ''} |")
 
 
-def main(cases: int | None = None, records: int = RECORDS, update: bool = False, output=DEFAULT_OUTPUT) -> dict:
-    grid = row_cases()
-    chosen = [case for kind in ROW_KINDS for case in first([c for c in grid if row_kind(c) == kind], cases)]
-    rows = [measure(case, records) for case in chosen]
+def several_contacts(cases: int | None = None, records: int = RECORDS, rows: list[dict] | None = None) -> dict:
+    """accuracy.json's part for several contacts: ``force`` (the two tables by kind) and ``section`` (the
+    interaction), measured on the first ``cases`` of each kind (all for None), or from ``rows`` already measured."""
+    if rows is None:
+        grid = row_cases()
+        chosen = [case for kind in ROW_KINDS for case in first([c for c in grid if row_kind(c) == kind], cases)]
+        rows = [measure(case, records) for case in chosen]
     measured = tables(rows)
-    print_tables(rows, measured)
+    return {"force": {"several contacts": {kind: entry["largest"] for kind, entry in measured.items()},
+                      "several contacts, each contact": {kind: entry["each contact"] for kind, entry in measured.items()}},
+            "section": {"interaction": {kind: entry["interaction"] for kind, entry in measured.items()}},
+            "rows": rows, "measured": measured}
+
+
+def main(cases: int | None = None, records: int = RECORDS, update: bool = False, output=DEFAULT_OUTPUT) -> dict:
+    result = several_contacts(cases, records)
+    print_tables(result["rows"], result["measured"])
     if update:
         if cases is not None or records != RECORDS:
             raise SystemExit("--update writes the full grid's numbers only: run it without --cases and --records")
         document = json.loads(Path(output).read_text())
-        document["force"]["several contacts"] = {kind: entry["largest"] for kind, entry in measured.items()}
-        document["force"]["several contacts, each contact"] = {kind: entry["each contact"] for kind, entry in measured.items()}
-        document["several_contacts"] = {
-            "about": f"{ABOUT}; at commit {git_commit()} on {datetime.date.today().isoformat()}",
-            "interaction": {kind: entry["interaction"] for kind, entry in measured.items()},
-        }
+        document["force"].update(result["force"])
+        document["several_contacts"] = {"about": f"{SEVERAL_CONTACTS_ABOUT}; at commit {git_commit()} on "
+                                                 f"{datetime.date.today().isoformat()}", **result["section"]}
         Path(output).write_text(json.dumps(document, indent=2, ensure_ascii=False) + "\n")
-    return measured
+    return result["measured"]
 
 
 if __name__ == "__main__":
