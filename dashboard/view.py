@@ -178,7 +178,8 @@ class PoundingDashboard(pn.viewable.Viewer):
                                               auto=True, embed=False, width=200, stylesheets=[BUTTON_CSS])
 
         self.figures = Figures()
-        self.figures.fill(m.snapshot, m.units, m.monte_carlo_points(), m.current_design_gap())
+        self.contact_history = ContactHistory()
+        self._fill_plots()
         self._redraw_pending = False
         m.param.watch(self._request_redraw, ["snapshot", "units", "pinned"])
         for job in (m.monte_carlo_job, m.design_gap_job):
@@ -189,15 +190,16 @@ class PoundingDashboard(pn.viewable.Viewer):
         self.pinned_overlay = PinnedOverlay(gap_figure)
         legend = gap_figure.legend[0]  # under the frame (Figures), one entry a row: two would be wider than the plot
         legend.orientation, legend.ncols = "vertical", 1
-        self.gap_plot = bokeh(gap_figure, min_height=GAP_PLOT_HEIGHT, visible=pn.bind(lambda row: not row, m.param.several_contacts))
+        self.gap_plot = bokeh(gap_figure, min_height=GAP_PLOT_HEIGHT)
+        # a Bokeh pane's own visibility must not change once shown (Panel re-syncs its stylesheets and fails): its column's does
+        one_contact = pn.bind(lambda row: not row, m.param.several_contacts)
+        gap_area = self._gap_area = pn.Column(self.gap_plot, sizing_mode="stretch_width", margin=0, visible=one_contact)
         self.contacts = pn.pane.HTML(pn.bind(self._contacts, m.param.result, m.param.units, m.param.capacity, m.check_job.param.result),
                                      stylesheets=[ROW_CSS], sizing_mode="stretch_width", css_classes=["contacts-pane"],
                                      visible=m.param.several_contacts)
-        self.contact_history = ContactHistory()
         one = lambda kind: pn.pane.Markdown(ONE_CONTACT[kind], visible=m.param.several_contacts,  # noqa: E731
                                             css_classes=["one-contact"], sizing_mode="stretch_width")
-        single = lambda *plots: pn.Row(*plots, sizing_mode="stretch_width",  # noqa: E731
-                                       visible=pn.bind(lambda row: not row, m.param.several_contacts))
+        single = lambda *plots: pn.Row(*plots, sizing_mode="stretch_width", visible=one_contact)  # noqa: E731
 
         self.tabs = LazyTabs(self, [
             ("Monte Carlo", self._monte_carlo_panel()),
@@ -209,15 +211,15 @@ class PoundingDashboard(pn.viewable.Viewer):
             ("Hysteresis loops", pn.Column(one("hysteresis"), single(*(bokeh(h) for h in self.figures.hysteresis)),
                                            sizing_mode="stretch_width")),
             ("Force history", pn.Column(
-                bokeh(self.contact_history.figure, visible=m.param.several_contacts),
+                pn.Column(bokeh(self.contact_history.figure), sizing_mode="stretch_width", visible=m.param.several_contacts),
                 pn.Column(bokeh(self.figures.contact), bokeh(self.figures.relative), bokeh(self.figures.ground),
-                          sizing_mode="stretch_width", visible=pn.bind(lambda row: not row, m.param.several_contacts)),
+                          sizing_mode="stretch_width", visible=one_contact),
                 sizing_mode="stretch_width")),
         ])
         self.headline_column = pn.Column(self.headline, self.export, pin_controls(self), width=430)
         self.main = pn.Column(
             self.error, self.note,
-            pn.Row(self.headline_column, pn.Column(self.gap_plot, self.contacts, sizing_mode="stretch_width"), sizing_mode="stretch_width"),
+            pn.Row(self.headline_column, pn.Column(gap_area, self.contacts, sizing_mode="stretch_width"), sizing_mode="stretch_width"),
             self.tabs.panel,
             sizing_mode="stretch_width",
         )
@@ -304,11 +306,16 @@ class PoundingDashboard(pn.viewable.Viewer):
         self._redraw_pending = False
         m = self.model
         with self._batch():
-            row = isinstance(m.snapshot, RowSnapshot)  # several contacts: their forces, not one contact's plots
-            self.figures.fill(None if row else m.snapshot, m.units, m.monte_carlo_points(), m.current_design_gap())
-            self.contact_history.fill(m.snapshot if row else None, m.units)
+            self._fill_plots()
             self.pinned_overlay.fill(m.pinned, m.units)
         self.tabs.refresh()
+
+    def _fill_plots(self) -> None:
+        """Put the snapshot's data in the plots: one contact's, or each contact's force (several contacts)."""
+        m = self.model
+        row = isinstance(m.snapshot, RowSnapshot)
+        self.figures.fill(None if row else m.snapshot, m.units, m.monte_carlo_points(), m.current_design_gap())
+        self.contact_history.fill(m.snapshot if row else None, m.units)
 
     def _refuse_upload(self, reason: str) -> None:
         self.model.upload_error = reason
@@ -364,7 +371,7 @@ class PoundingDashboard(pn.viewable.Viewer):
         """Inline, in a notebook cell of any width: the inputs, the headline and the gap plot side by side where
         they fit, else wrapped one under the other; the gap plot never narrower than its legend and title
         (:data:`INLINE_PLOT_MIN_WIDTH`)."""
-        plot = pn.Column(self.gap_plot, self.contacts, sizing_mode="stretch_width", styles={"flex": f"1 1 {INLINE_PLOT_MIN_WIDTH}px"})
+        plot = pn.Column(self._gap_area, self.contacts, sizing_mode="stretch_width", styles={"flex": f"1 1 {INLINE_PLOT_MIN_WIDTH}px"})
         results = pn.Column(self.error, self.note,
                             pn.FlexBox(self.headline_column, plot, flex_wrap="wrap", sizing_mode="stretch_width"),
                             self.tabs.panel, sizing_mode="stretch_width", styles={"flex": f"1 1 {INLINE_RESULTS_MIN_WIDTH}px"})
