@@ -1,6 +1,6 @@
 """The dashboard's inputs as a case file, and a case file as the dashboard's
 inputs: pure functions between the inputs (:class:`~dashboard.inputs.CaseInputs`
-and two :class:`~dashboard.inputs.BuildingInputs`, in the unit system shown) and
+and the row's :class:`~dashboard.inputs.BuildingInputs`, in the unit system shown) and
 the case file's schema (README.md), so the library converts, derives and
 validates, and a bad input is named as a case file would name it."""
 
@@ -16,6 +16,7 @@ from dashboard.inputs import (
     BuildingInputs,
     CaseInputs,
 )
+from dashboard.row_inputs import contacts_of_inputs, floors_of_case
 from pounding.case.case import Case
 from pounding.display_units import Display, display
 from pounding.errors import CaseError
@@ -102,25 +103,32 @@ def _excitation(v: dict, records: list[str], extra: dict) -> dict:
     return {**spectrum, **common}
 
 
-def case_file_of_inputs(inputs: CaseInputs, buildings: tuple[BuildingInputs, BuildingInputs], units: str, records: list[str] = (),
-                        extra: dict | None = None, name: str = "case", description: str = "") -> dict:
-    """The case file of ``inputs`` and ``buildings`` (typed in ``units``); ``records`` the uploaded files' paths,
-    ``extra`` what a loaded case had that the dashboard does not show (the records' sampling, a Clough-Penzien filter)."""
+def case_file_of_inputs(inputs: CaseInputs, buildings: tuple[BuildingInputs, ...], units: str, records: list[str] = (),
+                        extra: dict | None = None, name: str = "case", description: str = "", changed=()) -> dict:
+    """The case file of ``inputs`` and ``buildings`` (the row's, left to right, typed in ``units``); ``records`` the
+    uploaded files' paths, ``extra`` what a loaded case had that the dashboard does not show (the records' sampling, a
+    Clough-Penzien filter, an uploaded file's own contacts); ``changed`` the inputs of the contact law changed since
+    (:func:`~dashboard.row_inputs.contacts_of_inputs`)."""
     extra = extra or {}
     shown = display(units)
     v = _in_file_units(inputs, shown)
+    contacts = contacts_of_inputs(v, [b.contact_floor for b in buildings], [b.storeys for b in buildings], shown.system,
+                                  extra.get("contacts"), changed)
     return {
         "units": shown.system.name, "name": name, "description": description,
         "excitation": _excitation(v, list(records), extra),
         "buildings": [_building_table(building, shown) for building in buildings],
-        "contact": {"model": v["contact_model"], "gap": v["gap"], "stiffness": v["contact_stiffness"],
-                    "restitution": v["restitution"], "levels": [building.contact_floor for building in buildings]},
+        **contacts,
     }
 
 
-def _building_values(case: Case, units: str, data: dict) -> tuple[dict, dict]:
-    """The input values of each building showing ``case``'s (each storey alike) in ``units``."""
+def _building_values(case: Case, units: str, data: dict) -> list[dict]:
+    """The input values of each building showing ``case``'s (each storey alike) in ``units``; its contact floor the
+    last one of its contacts names."""
     u = display(units)
+    floors = {}
+    for contact in case.contacts:
+        floors.update(zip(contact.between, contact.levels))
     out = []
     for b, building in enumerate(case.buildings, start=1):
         storeys = building.storeys
@@ -145,13 +153,13 @@ def _building_values(case: Case, units: str, data: dict) -> tuple[dict, dict]:
             "hysteresis": form,
             "alpha": bw.alpha, "A": bw.A, "n": bw.n,
             "beta": u.from_si(bw.beta, length=-bw.n), "gamma": u.from_si(bw.gamma, length=-bw.n),
-            "contact_floor": case.contact.levels[b - 1],
+            "contact_floor": floors.get(b, 1),
         }
         if form != "elastic" and total > 0:
             values |= {"post_yield_ratio": bw.alpha, "beta_share": max(0.5, bw.beta / total),
                        "yield_drift": u.from_si(first.yield_drift, length=1), "yield_force": u.from_si(first.yield_force, force=1)}
         out.append(values)
-    return out[0], out[1]
+    return out
 
 
 def _code_values(table: dict, where: str) -> dict:
@@ -205,18 +213,24 @@ def _excitation_values(case: Case, data: dict, units: str) -> tuple[dict, dict]:
     return values, extra
 
 
-def inputs_of_case(case: Case, data: dict, units: str) -> tuple[dict, tuple[dict, dict], dict]:
+def inputs_of_case(case: Case, data: dict, units: str) -> tuple[dict, list[dict], dict]:
     """The input values showing ``case`` (loaded from the case file ``data``) in ``units``: the case's (ground
-    motion, contact), each building's, and the extras to keep.
+    motion, which floors meet, the gap and contact law: its first contact's), each building's, and the extras to keep
+    (an uploaded file's own contacts, where no choice of floors describes them).
 
-    Raises :class:`CaseError` for what the dashboard cannot show (storeys that differ, a tabulated spectrum)."""
+    Raises :class:`CaseError` for what the dashboard cannot show (storeys that differ, a tabulated spectrum, more
+    than three buildings)."""
     u = display(units)
-    contact = case.contact
+    contact = case.contacts[0]
+    floors, own = floors_of_case(case, data)
     buildings = _building_values(case, units, data)
     values, extra = _excitation_values(case, data, units)
     values |= {
+        "buildings_in_row": len(case.buildings), "floors_meet": floors,
         "gap": u.from_si(contact.gap, length=1),
         "contact_stiffness": u.from_si(contact.stiffness, force=1, length=-contact.stiffness_exponent),
         "restitution": contact.restitution, "contact_model": contact.model,
     }
+    if own is not None:
+        extra["contacts"] = own
     return values, buildings, extra

@@ -2,7 +2,7 @@
 bounds, its help text and its dimension (the view labels it with its unit in
 the unit system shown). Accelerations written in g are in g in every system.
 
-:class:`BuildingInputs` holds one building's (the model holds two);
+:class:`BuildingInputs` holds one building's (the model holds three, the third used in a row of three);
 :class:`CaseInputs` the ground motion's and the design check's. The model
 (``model.py``) turns them into a case file (README.md schema), so the library
 validates them and names a bad one as a case file would.
@@ -14,6 +14,7 @@ import importlib.util
 
 import param
 
+from dashboard.row_inputs import ALIGNED_FLOORS, AS_IN_FILE, FLOORS_MEET
 from pounding import defaults
 from pounding.case.excitation import GROUND_TYPES
 from pounding.mechanics.contact import CONTACT_MODELS, MIN_RESTITUTION, contact_law
@@ -53,7 +54,7 @@ _STOREYS = (1, defaults.DASHBOARD_MAX_STOREYS)
 class BuildingInputs(param.Parameterized):
     """The inputs of one building, every storey alike (dimensional ones in the unit system shown)."""
 
-    number = param.Integer(1, bounds=(1, 2), constant=True, precedence=-1, doc="1 or 2: which building of the pair.")
+    number = param.Integer(1, bounds=(1, 3), constant=True, precedence=-1, doc="1, 2 or 3: which building of the row, from the left.")
     storeys = param.Integer(1, bounds=_STOREYS, label="storeys",
                             doc="Number of storeys, all alike. Changing it keeps the fundamental period.")
     period = param.Number(1.0, bounds=(0.02, 10.0), label="fundamental period [s]",
@@ -139,7 +140,12 @@ class CaseInputs(param.Parameterized):
     B1 = param.Number(0.085, bounds=(0.001, 5.0), label="envelope B1 [1/s]", doc="Shinozuka-Sato decay constant B1, below B2.")
     B2 = param.Number(0.17, bounds=(0.002, 10.0), label="envelope B2 [1/s]", doc="Shinozuka-Sato decay constant B2, above B1.")
 
-    gap = param.Number(0.01, bounds=(0.0, None), label="gap", doc="Separation of the contact floors at rest.")
+    buildings_in_row = param.Selector(default=2, objects=[2, 3], label="buildings in the row",
+                                      doc="Two buildings, or three in a row (left to right): each meets its neighbours.")
+    floors_meet = param.Selector(default=ALIGNED_FLOORS, objects=[*FLOORS_MEET, AS_IN_FILE], label="floors that meet",
+                                 doc="Every floor neighbours share (equal storey heights), the lower building's roof only, "
+                                 "or one floor each (each building's contact floor); an uploaded case file's own contacts.")
+    gap = param.Number(0.01, bounds=(0.0, None), label="gap", doc="Separation of the contact floors at rest (every contact's).")
     target_probability = param.Number(defaults.TARGET_PROBABILITY, bounds=(0.5, 0.9999), label="target P(no pounding) [-]",
                                       doc="Probability of no pounding during the record that the gap needed must give.")
     capacity = param.Number(3e5, bounds=(0.0, None), inclusive_bounds=(False, True), label="capacity",

@@ -30,6 +30,7 @@ from dashboard.inputs import BuildingInputs, CaseInputs, input_names
 from dashboard.messages import message
 from dashboard.pinning import Pinning
 from dashboard.refusals import refusal
+from dashboard.row_inputs import LAW_KEYS
 from dashboard.runner import Latest
 from dashboard.studies import Studies
 from dashboard.uploads import UploadRefused, checked_name, new_folder, remove
@@ -42,6 +43,7 @@ from pounding.display_units import display
 from pounding.errors import CaseError, ConvergenceError, InputError, SimulationError
 from pounding.presets import preset_names, preset_text, preset_title
 from pounding.report import compute_snapshot
+from pounding.report.contacts import compute_row_snapshot
 from pounding.units import UNIT_SYSTEMS
 
 __all__ = ["NO_RECORDS_YET", "PoundingModel", "input_key"]
@@ -80,10 +82,14 @@ class PoundingModel(CaseInputs, Studies, Pinning):
     advanced = param.Boolean(False, label="advanced inputs", doc="Show the raw Bouc-Wen form, the contact law and its stiffness.")
     building_1 = param.ClassSelector(class_=BuildingInputs, constant=True, precedence=-1, doc="The inputs of building 1.")
     building_2 = param.ClassSelector(class_=BuildingInputs, constant=True, precedence=-1, doc="The inputs of building 2.")
+    building_3 = param.ClassSelector(class_=BuildingInputs, constant=True, precedence=-1,
+                                     doc="The inputs of building 3 (used in a row of three).")
 
     # --- outputs (not inputs) ---
-    result = param.Parameter(None, precedence=-1, doc="pounding.closed_form.estimator.Estimate of the current inputs, or None.")
-    snapshot = param.Parameter(None, precedence=-1, doc="pounding.report.Snapshot of the current inputs (the plots), or None.")
+    result = param.Parameter(None, precedence=-1, doc="pounding.closed_form.estimator.Estimate of the current inputs (several "
+                             "contacts: a pounding.closed_form.row.RowEstimate), or None.")
+    snapshot = param.Parameter(None, precedence=-1, doc="pounding.report.Snapshot of the current inputs (the plots; several "
+                               "contacts: a pounding.report.contacts.RowSnapshot), or None.")
     error = param.String("", precedence=-1, doc="Why there is no result (names the input).")
     note = param.String("", precedence=-1, doc="What the last change did besides (moved another input, loaded a file): "
                         "shown until the next change of input.")
@@ -91,6 +97,8 @@ class PoundingModel(CaseInputs, Studies, Pinning):
     upload_error = param.String("", precedence=-1, doc="Why the last upload was refused (its size, its name), or ''.")
     refused = param.Dict({}, precedence=-1, doc="Values typed but not taken: {input's key (input_key): why, in the "
                          "input's units}. The results shown stay those of the last inputs taken.")
+    several_contacts = param.Boolean(False, precedence=-1, doc="Whether the estimate shown is of a case of several contacts "
+                                     "(its headline names the governing contact, a table lists them).")
     waiting = param.String("", precedence=-1, doc="What the page needs before it computes the inputs shown (records "
                            "to upload), or ''; the results shown stay those of the last inputs computed.")
 
@@ -102,6 +110,7 @@ class PoundingModel(CaseInputs, Studies, Pinning):
         view asks for it; off by default, so that a model made for a computation starts no study)."""
         params.setdefault("building_1", BuildingInputs(number=1, period=1.2))
         params.setdefault("building_2", BuildingInputs(number=2, period=0.4))
+        params.setdefault("building_3", BuildingInputs(number=3, period=0.8))
         super().__init__(**params)
         self._schedule = schedule or (lambda fn: fn())
         self._batch = batch or contextlib.nullcontext
@@ -131,9 +140,13 @@ class PoundingModel(CaseInputs, Studies, Pinning):
 
     # --- inputs <-> case ---------------------------------------------------------
 
-    def buildings(self) -> tuple[BuildingInputs, BuildingInputs]:
-        """The inputs of building 1 and of building 2."""
-        return self.building_1, self.building_2
+    def buildings(self) -> tuple[BuildingInputs, BuildingInputs, BuildingInputs]:
+        """The inputs of buildings 1, 2 and 3 (the third used in a row of three: :meth:`row`)."""
+        return self.building_1, self.building_2, self.building_3
+
+    def row(self) -> tuple[BuildingInputs, ...]:
+        """The inputs of the buildings of the case, left to right (``buildings_in_row`` of them)."""
+        return self.buildings()[: self.buildings_in_row]
 
     def inputs(self) -> list[tuple[param.Parameterized, str]]:
         """Every input, as (its owner: this model or one of its buildings, its name)."""
@@ -142,8 +155,9 @@ class PoundingModel(CaseInputs, Studies, Pinning):
     def case_file(self) -> dict:
         """The inputs as a case file's contents (README.md schema), in ``units``."""
         records = [path.name for path in sorted(self._records_folder.iterdir())] if self._records_folder else []
-        return case_file_of_inputs(self, self.buildings(), self.units, records, self._extra, name=self.case_name(),
-                                   description=self._description)
+        changed = [name for name in LAW_KEYS if _differs(self._preset_values.get((self, name), getattr(self, name)), getattr(self, name))]
+        return case_file_of_inputs(self, self.row(), self.units, records, self._extra, name=self.case_name(),
+                                   description=self._description, changed=changed)
 
     def case_name(self) -> str:
         """The preset's name (an uploaded case file's), marked when the inputs differ from it."""
@@ -315,9 +329,9 @@ class PoundingModel(CaseInputs, Studies, Pinning):
     def _storeys_changed(self) -> None:
         """More or fewer storeys keep the fundamental period: the storey stiffness follows, and the page says so
         (and where a contact floor no longer exists, that it moved to the top floor)."""
-        first, second = self.buildings()
-        notes = [f"The storey stiffness follows the number of storeys: T1 = {first.period:.3g} s and T2 = {second.period:.3g} s are kept."]
-        for building in self.buildings():
+        periods = " and ".join(f"T{b.number} = {b.period:.3g} s" for b in self.row())
+        notes = [f"The storey stiffness follows the number of storeys: {periods} are kept."]
+        for building in self.row():
             if building.contact_floor > building.storeys:
                 self._set_quietly({"contact_floor": building.storeys}, building)
                 notes.append(f"Building {building.number}'s contact floor moved to {building.storeys}: it has {building.storeys} storey(s).")
@@ -383,8 +397,8 @@ class PoundingModel(CaseInputs, Studies, Pinning):
         """The estimate, delivered; then, once the headline is out, what the plots show (from the same pair)."""
         try:
             case = self.build_case(data)
-            pair = LinearizedPair.of(case)
-            result = estimate(pair, target_probability=self.target_probability)
+            pair = LinearizedPair.of(case) if len(case.contacts) == 1 else None  # several: each contact's, in the estimate
+            result = estimate(case if pair is None else pair, target_probability=self.target_probability)
         except _FAILURES as error:
             text = message(error)
             deliver(lambda: self._failed(text))
@@ -394,7 +408,10 @@ class PoundingModel(CaseInputs, Studies, Pinning):
             if not current():
                 return
             try:
-                snapshot = compute_snapshot(case, seed=self.seed, target_probability=self.target_probability, pair=pair, result=result)
+                if pair is None:
+                    snapshot = compute_row_snapshot(case, seed=self.seed, result=result)
+                else:
+                    snapshot = compute_snapshot(case, seed=self.seed, target_probability=self.target_probability, pair=pair, result=result)
             except _FAILURES as error:
                 text = message(error)
                 deliver(lambda: self._failed(text))
@@ -416,7 +433,7 @@ class PoundingModel(CaseInputs, Studies, Pinning):
         with self._batch():
             self._invalidate_studies(case)
             self._check(result)  # its thread waits a moment: the headline goes out first
-            self.param.update(result=result, error="")
+            self.param.update(result=result, error="", several_contacts=len(case.contacts) > 1)
 
     def _snapshot_ready(self, snapshot) -> None:
         with self._batch():

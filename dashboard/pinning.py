@@ -75,8 +75,9 @@ class Pinning(param.Parameterized):
                                  doc="The state kept for comparison (PinnedState), or None.")
 
     def can_pin(self) -> bool:
-        """Whether the page shows a valid state whose plots are computed (the snapshot of the estimate shown)."""
-        return self.result is not None and self.snapshot is not None and self.snapshot.estimate is self.result
+        """Whether the page shows a valid state of one contact whose plots are computed (the snapshot of the estimate shown)."""
+        return (self.result is not None and self.snapshot is not None and self.snapshot.estimate is self.result
+                and len(self.result.case.contacts) == 1)  # a case of several contacts is not compared
 
     def pin(self) -> bool:
         """Keep the state shown (its estimate and snapshot, as computed); False when there is none to keep."""

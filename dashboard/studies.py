@@ -17,9 +17,9 @@ from pounding.report import MonteCarloPoint
 from pounding.simulation.monte_carlo import Cancelled, DesignGap, design_gap
 from pounding.simulation.plan import MonteCarloPlan
 from pounding.simulation.system import Settings
-from pounding.studies.check import EstimateCheck, check_estimate
+from pounding.studies.check import EstimateCheck, RowCheck, check_estimate, check_row
 
-__all__ = ["MAX_STUDY_RECORDS", "Studies"]
+__all__ = ["MAX_STUDY_RECORDS", "ONE_CONTACT_STUDIES", "Studies"]
 
 MAX_STUDY_RECORDS = 2000
 """Most records of one study of the page (about a minute of two cores); the command line takes more."""
@@ -31,6 +31,10 @@ CHECK_DELAY = 0.25
 """Seconds a check waits after the headline before it starts, so that typing (a change every few tenths of a
 second) starts one check, not one a keystroke; a newer change ends the wait at once."""
 CHECK_THREADS = 1
+ONE_CONTACT_STUDIES = ("The Monte Carlo study at a chosen number of records and the Monte Carlo design gap take a case of one "
+                       "contact; this case has several. The page checks it against simulated records by itself, every "
+                       "contact acting: the headline's verdict and the table's Monte Carlo column.")
+"""What the Monte Carlo tab says for a case of several contacts (its studies take one contact)."""
 """Threads of one check: one core, whatever the machine has; the sessions' closed forms keep the others."""
 
 
@@ -60,14 +64,14 @@ class Studies(param.Parameterized):
         self.check_job = StudyJob(schedule=self._schedule, submit=check_pool().submit, title="Check against simulated records")
         self.checks = check
         self._mc_case_key = None
-        self._mc_gap: float | None = None
+        self._mc_gap: tuple | None = None  # the gap of each contact of the study running
         self._design_gap_key = None
         self._checked: tuple | None = None  # (_check_key of the last check that ended, its EstimateCheck)
         self._checking = None  # the Estimate whose check was started last
 
     # --- the check of the headline ------------------------------------------------------
 
-    def current_check(self) -> EstimateCheck | None:
+    def current_check(self) -> EstimateCheck | RowCheck | None:
         """The check of exactly the estimate shown (``result``), once it has ended; None before, and for any other."""
         found = self.check_job.result
         if found is None or self.result is None:
@@ -97,11 +101,12 @@ class Studies(param.Parameterized):
             self.check_job.param.update(result=(result, self._checked[1]), error="")
             return
         plan = MonteCarloPlan(seed=self.seed, settings=Settings(workers=CHECK_THREADS))
+        check = check_row if len(result.case.contacts) > 1 else check_estimate  # several contacts: one study of them all
 
         def study(progress, cancel):  # no progress: the page shows none, and each report would cost the loop a callback
             if cancel.wait(CHECK_DELAY):
                 raise Cancelled("a newer change came first")
-            return check_estimate(result, dataclasses.replace(plan, cancel=cancel))
+            return check(result, dataclasses.replace(plan, cancel=cancel))
 
         def keep(check: EstimateCheck):
             self._checked = (key, check)
@@ -125,7 +130,7 @@ class Studies(param.Parameterized):
         value by a rounding error at most (compared with a tolerance).
         """
         study, free = _study_key(case), _free_motion_key(case)
-        gap = None if case is None else case.contact.gap
+        gap = None if case is None else tuple(contact.gap for contact in case.contacts)
         if not (_same(study, self._mc_case_key) and _same(gap, self._mc_gap)):
             self.monte_carlo_job.cancel(CHANGED_WHILE_RUNNING)
         if not _same(study, self._mc_case_key):
@@ -139,7 +144,7 @@ class Studies(param.Parameterized):
     def monte_carlo_for_current_gap(self) -> MonteCarloPoint | None:
         """The latest study of exactly the case of the estimate shown (``result``: the plots may still be of the
         inputs before), if any."""
-        if self.result is None:
+        if self.result is None or len(self.result.case.contacts) > 1:
             return None
         gap = self.result.case.contact.gap
         matching = [m for m in self.monte_carlo_points() if _same(m.gap, gap)]
@@ -150,7 +155,10 @@ class Studies(param.Parameterized):
         if self.monte_carlo_job.running or self.snapshot is None:
             return
         case = self.snapshot.case
-        self._mc_gap = case.contact.gap
+        if len(case.contacts) > 1:
+            self.monte_carlo_job.status = ONE_CONTACT_STUDIES
+            return
+        self._mc_gap = (case.contact.gap,)
         records = _records_of(case, self.records)
         self.monte_carlo_job.start(partial(simulate, case, records=records, seed=self.seed), records,
                                keep=lambda result: (*self.monte_carlo_points(), MonteCarloPoint.from_result(result)))
@@ -173,6 +181,9 @@ class Studies(param.Parameterized):
         if self.design_gap_job.running or self.snapshot is None:
             return
         case = self.snapshot.case
+        if len(case.contacts) > 1:
+            self.design_gap_job.status = ONE_CONTACT_STUDIES
+            return
         target = self.snapshot.estimate.target_probability
         records, seed = _records_of(case, self.records), self.seed
         shown = self.current_design_gap()
@@ -189,7 +200,7 @@ def _records_of(case, records: int) -> int:
 
 def _study_key(case):
     """What a study with contact depends on apart from the gap (its points share one plot)."""
-    return None if case is None else (case.buildings, case.excitation, dataclasses.replace(case.contact, gap=0.0))
+    return None if case is None else (case.buildings, case.excitation, tuple(dataclasses.replace(c, gap=0.0) for c in case.contacts))
 
 
 def _check_key(result, seed: int):
@@ -199,12 +210,12 @@ def _check_key(result, seed: int):
     case = result.case
     if case.recorded:
         return None
-    return (case.buildings, case.excitation, case.contact, result.target_probability, seed)
+    return (case.buildings, case.excitation, case.contacts, result.target_probability, seed)
 
 
 def _free_motion_key(case):
     """What the records' free motion, and so the design gap, depends on: not the contact law or the gap."""
-    return None if case is None else (case.buildings, case.excitation, case.contact.levels)
+    return None if case is None else (case.buildings, case.excitation, tuple((c.between, c.levels) for c in case.contacts))
 
 
 def _same(a, b) -> bool:

@@ -25,6 +25,11 @@ FRAGILITY_POINTS = 20
 def distribution_plot(dashboard, snapshot, units: str, capacity: float):
     from pounding.report.distribution_section import distribution_figure
 
+    if len(snapshot.case.contacts) > 1:
+        from dashboard.contacts import ONE_CONTACT
+
+        return pn.pane.Markdown(ONE_CONTACT["distribution"], css_classes=["one-contact"])
+
     studies = dashboard.model.monte_carlo_points()
     figure = distribution_figure(dataclasses.replace(snapshot, monte_carlo=studies), units)
     top = snapshot.estimate.force_max_distribution.quantile(0.999)

@@ -19,18 +19,21 @@ from pathlib import Path
 import panel as pn
 import param
 
+from dashboard.contacts import ONE_CONTACT, ROW_CSS, contacts_html, row_headline_html
 from dashboard.headline import HEADLINE_CSS, headline_html, held_note
 from dashboard.input_widgets import InputField
 from dashboard.jobs import StudyJob
 from dashboard.model import PoundingModel, input_key
 from dashboard.pinning import PINNED_CSS, PinnedOverlay, pin_controls, pinned_html
 from dashboard.runner import shared_pool
+from dashboard.studies import ONE_CONTACT_STUDIES
 from dashboard.tabs import LazyTabs
 from dashboard.upload_widget import FileUpload
 from dashboard.uploads import MAX_CASE_BYTES, MAX_RECORD_BYTES, MAX_RECORD_FILES, new_folder, remove, size_text
 from dashboard.visibility import visible
 from pounding.display_units import display
 from pounding.report import Figures, StateMonteCarlo, case_provenance, write_report
+from pounding.report.contacts import ContactHistory, RowSnapshot
 
 __all__ = ["PoundingDashboard"]
 
@@ -59,7 +62,8 @@ def _session():
     return doc if doc is not None and doc.session_context is not None else None
 
 
-SHAPING = ("units", "advanced", "contact_model", "ground_motion", "intensity", "code", "scaling", "envelope")
+SHAPING = ("units", "advanced", "contact_model", "ground_motion", "intensity", "code", "scaling", "envelope", "buildings_in_row",
+           "floors_meet")
 """The model's inputs that decide which others apply or what unit they take: with :data:`SHAPING_BUILDING`, the only
 ones whose change relabels the page."""
 SHAPING_BUILDING = ("storeys", "hysteresis", "n")
@@ -113,7 +117,10 @@ class PoundingDashboard(pn.viewable.Viewer):
                  "post_yield_ratio", "n", "beta_share", "alpha", "A", "beta", "gamma")
         widgets = self._inputs(*names, owner=building)
         self._widgets[-len(names) + names.index("stiffness")].widget.disabled = True  # derived from the period
-        return pn.Card(*widgets, title=f"Building {building.number}", collapsed=True, sizing_mode="stretch_width")
+        card = pn.Card(*widgets, title=f"Building {building.number}", collapsed=True, sizing_mode="stretch_width")
+        if building.number > 2:  # in a row of three only
+            card.visible = pn.bind(lambda count: count >= building.number, self.model.param.buildings_in_row)
+        return card
 
     def _build(self) -> None:
         m = self.model
@@ -131,7 +138,8 @@ class PoundingDashboard(pn.viewable.Viewer):
                                             m.param.uploaded), sizing_mode="stretch_width", styles={"font-size": "12px"})
         self.sidebar = pn.Column(
             self._widget("preset"),
-            pn.Card(*self._inputs("gap", "target_probability", "capacity", "restitution"), title="Design", sizing_mode="stretch_width"),
+            pn.Card(*self._inputs("buildings_in_row", "floors_meet", "gap", "target_probability", "capacity", "restitution"),
+                    title="Design", sizing_mode="stretch_width"),
             pn.Card(*self._inputs("ground_motion", "intensity", "pga", "G0", "omega_g", "xi_g", "record_set", "component",
                                   "scaling", "scale", "records_pga", "fit", "code", "ag", "ground_type", "spectrum_type", "SDS", "SD1", "TL"),
                     pn.Column(pn.pane.Markdown(f"Records: PEER .AT2 or two columns (time s, acceleration g), up to "
@@ -163,14 +171,15 @@ class PoundingDashboard(pn.viewable.Viewer):
             pn.bind(self._headline, m.param.result, m.param.units, m.param.capacity, m.monte_carlo_job.param.result,
                     m.design_gap_job.param.result, m.param.error, m.check_job.param.result, m.check_job.param.error,
                     m.param.refused, m.param.waiting, m.param.pinned),
-            stylesheets=[HEADLINE_CSS, PINNED_CSS], sizing_mode="stretch_width", min_width=380,
+            stylesheets=[HEADLINE_CSS, PINNED_CSS, ROW_CSS], sizing_mode="stretch_width", min_width=380,
         )
         self.export = pn.widgets.FileDownload(callback=self._export, filename="pounding-report.html", label="Export report (HTML)",
                                               button_type="success", disabled=pn.bind(lambda s: s is None, m.param.snapshot),
                                               auto=True, embed=False, width=200, stylesheets=[BUTTON_CSS])
 
         self.figures = Figures()
-        self.figures.fill(m.snapshot, m.units, m.monte_carlo_points(), m.current_design_gap())
+        self.contact_history = ContactHistory()
+        self._fill_plots()
         self._redraw_pending = False
         m.param.watch(self._request_redraw, ["snapshot", "units", "pinned"])
         for job in (m.monte_carlo_job, m.design_gap_job):
@@ -182,21 +191,35 @@ class PoundingDashboard(pn.viewable.Viewer):
         legend = gap_figure.legend[0]  # under the frame (Figures), one entry a row: two would be wider than the plot
         legend.orientation, legend.ncols = "vertical", 1
         self.gap_plot = bokeh(gap_figure, min_height=GAP_PLOT_HEIGHT)
+        # a Bokeh pane's own visibility must not change once shown (Panel re-syncs its stylesheets and fails): its column's does
+        one_contact = pn.bind(lambda row: not row, m.param.several_contacts)
+        gap_area = self._gap_area = pn.Column(self.gap_plot, sizing_mode="stretch_width", margin=0, visible=one_contact)
+        self.contacts = pn.pane.HTML(pn.bind(self._contacts, m.param.result, m.param.units, m.param.capacity, m.check_job.param.result),
+                                     stylesheets=[ROW_CSS], sizing_mode="stretch_width", css_classes=["contacts-pane"],
+                                     visible=m.param.several_contacts)
+        one = lambda kind: pn.pane.Markdown(ONE_CONTACT[kind], visible=m.param.several_contacts,  # noqa: E731
+                                            css_classes=["one-contact"], sizing_mode="stretch_width")
+        single = lambda *plots: pn.Row(*plots, sizing_mode="stretch_width", visible=one_contact)  # noqa: E731
 
         self.tabs = LazyTabs(self, [
             ("Monte Carlo", self._monte_carlo_panel()),
             ("Distribution of F_max", "distribution"),
             ("Fragility", "fragility"),
             ("Ground motion", "hazard"),
-            ("Spectra", pn.Row(bokeh(self.figures.psd_ground), bokeh(self.figures.psd_velocity), sizing_mode="stretch_width")),
-            ("Hysteresis loops", pn.Row(*(bokeh(h) for h in self.figures.hysteresis), sizing_mode="stretch_width")),
-            ("Force history", pn.Column(bokeh(self.figures.contact), bokeh(self.figures.relative), bokeh(self.figures.ground),
-                                        sizing_mode="stretch_width")),
+            ("Spectra", pn.Column(one("spectra"), single(bokeh(self.figures.psd_ground), bokeh(self.figures.psd_velocity)),
+                                  sizing_mode="stretch_width")),
+            ("Hysteresis loops", pn.Column(one("hysteresis"), single(*(bokeh(h) for h in self.figures.hysteresis)),
+                                           sizing_mode="stretch_width")),
+            ("Force history", pn.Column(
+                pn.Column(bokeh(self.contact_history.figure), sizing_mode="stretch_width", visible=m.param.several_contacts),
+                pn.Column(bokeh(self.figures.contact), bokeh(self.figures.relative), bokeh(self.figures.ground),
+                          sizing_mode="stretch_width", visible=one_contact),
+                sizing_mode="stretch_width")),
         ])
         self.headline_column = pn.Column(self.headline, self.export, pin_controls(self), width=430)
         self.main = pn.Column(
             self.error, self.note,
-            pn.Row(self.headline_column, self.gap_plot, sizing_mode="stretch_width"),
+            pn.Row(self.headline_column, pn.Column(gap_area, self.contacts, sizing_mode="stretch_width"), sizing_mode="stretch_width"),
             self.tabs.panel,
             sizing_mode="stretch_width",
         )
@@ -223,6 +246,7 @@ class PoundingDashboard(pn.viewable.Viewer):
         records = self._widget("records", width=220, sizing_mode=None)
         seed = self._widget("seed", width=160, sizing_mode=None)
         return pn.Column(
+            pn.pane.Markdown(ONE_CONTACT_STUDIES, visible=m.param.several_contacts, css_classes=["one-contact"]),
             pn.pane.Markdown("Nonlinear time histories of the same buildings with pounding (the 'exact' method): the mean "
                              "F_max with its 95 % interval beside the estimate, and the gap for the target from the records' free motion."),
             pn.Row(records, seed),
@@ -260,11 +284,18 @@ class PoundingDashboard(pn.viewable.Viewer):
             return f'<div class="headline stale">{held}<p>{text}</p></div>'
         capacity_si = display(units).to_si(capacity, force=1)
         check, check_error = m.current_check(), m.check_error()
+        if len(result.case.contacts) > 1:
+            return row_headline_html(result, units, capacity_si, m.case_name(), check=check, checking=m.checks and check is None
+                                     and not check_error, check_error=check_error, held=held, pinned=pinned is not None)
         return headline_html(result, units, capacity_si, m.monte_carlo_for_current_gap(), m.current_design_gap(), m.case_name(),
                              check=check, checking=m.checks and check is None and not check_error, check_error=check_error,
                              held=held, pinned=pinned_html(pinned, result, units,
                                                            StateMonteCarlo.of(result, check, m.monte_carlo_for_current_gap())),
                              gap_for_capacity=m.gap_for_capacity)
+
+    def _contacts(self, result, units, capacity, _check) -> str:
+        """The table of contacts of a case of several contacts ('' for one)."""
+        return contacts_html(result, units, self.model.current_check(), display(units).to_si(capacity, force=1))
 
     def _request_redraw(self, *_events) -> None:
         if not self._redraw_pending:
@@ -275,9 +306,16 @@ class PoundingDashboard(pn.viewable.Viewer):
         self._redraw_pending = False
         m = self.model
         with self._batch():
-            self.figures.fill(m.snapshot, m.units, m.monte_carlo_points(), m.current_design_gap())
+            self._fill_plots()
             self.pinned_overlay.fill(m.pinned, m.units)
         self.tabs.refresh()
+
+    def _fill_plots(self) -> None:
+        """Put the snapshot's data in the plots: one contact's, or each contact's force (several contacts)."""
+        m = self.model
+        row = isinstance(m.snapshot, RowSnapshot)
+        self.figures.fill(None if row else m.snapshot, m.units, m.monte_carlo_points(), m.current_design_gap())
+        self.contact_history.fill(m.snapshot if row else None, m.units)
 
     def _refuse_upload(self, reason: str) -> None:
         self.model.upload_error = reason
@@ -301,7 +339,10 @@ class PoundingDashboard(pn.viewable.Viewer):
         if m.snapshot is None:
             return None
         capacity = display(m.units).to_si(m.capacity, force=1)  # the page's capacity, as the headline reads it
-        snapshot = replace(m.snapshot, monte_carlo=m.monte_carlo_points(), design_gap=m.current_design_gap(), capacity=capacity)
+        if isinstance(m.snapshot, RowSnapshot):
+            snapshot = replace(m.snapshot, capacity=capacity)
+        else:
+            snapshot = replace(m.snapshot, monte_carlo=m.monte_carlo_points(), design_gap=m.current_design_gap(), capacity=capacity)
         check = m.current_check()  # the page's own check of this very estimate: the report takes it, not a second run
         if check is not None and snapshot.estimate is m.result:
             snapshot = replace(snapshot, check=check)
@@ -330,7 +371,7 @@ class PoundingDashboard(pn.viewable.Viewer):
         """Inline, in a notebook cell of any width: the inputs, the headline and the gap plot side by side where
         they fit, else wrapped one under the other; the gap plot never narrower than its legend and title
         (:data:`INLINE_PLOT_MIN_WIDTH`)."""
-        plot = pn.Column(self.gap_plot, sizing_mode="stretch_width", styles={"flex": f"1 1 {INLINE_PLOT_MIN_WIDTH}px"})
+        plot = pn.Column(self._gap_area, self.contacts, sizing_mode="stretch_width", styles={"flex": f"1 1 {INLINE_PLOT_MIN_WIDTH}px"})
         results = pn.Column(self.error, self.note,
                             pn.FlexBox(self.headline_column, plot, flex_wrap="wrap", sizing_mode="stretch_width"),
                             self.tabs.panel, sizing_mode="stretch_width", styles={"flex": f"1 1 {INLINE_RESULTS_MIN_WIDTH}px"})

@@ -1,11 +1,12 @@
 """Which inputs apply as the others stand (a yield drift only where the storeys are given by it, the design
 code's parameters only under a design spectrum, ...), and which are shown: those that apply, the advanced ones
-only with the advanced switch on. An input is named by its owner (the model, or one of its two
-:class:`~dashboard.inputs.BuildingInputs`) and its parameter's name."""
+only with the advanced switch on (a third building's only in a row of three). An input is named by its owner
+(the model, or one of its :class:`~dashboard.inputs.BuildingInputs`) and its parameter's name."""
 
 from __future__ import annotations
 
 from dashboard.inputs import RECORD_SET_FORM, RECORDED_FORMS, BuildingInputs
+from dashboard.row_inputs import CHOSEN_FLOORS
 
 __all__ = ["ADVANCED", "applies", "visible"]
 
@@ -28,8 +29,8 @@ def _storey_input_applies(model, building: BuildingInputs, name: str) -> bool:
         return form in _YIELDING or form == "Bouc-Wen"
     if name in ("alpha", "A", "beta", "gamma"):
         return form == "Bouc-Wen"
-    if name == "contact_floor":
-        return max(model.building_1.storeys, model.building_2.storeys) > 1
+    if name == "contact_floor":  # one floor each: the floor of each building that meets its neighbours
+        return model.floors_meet == CHOSEN_FLOORS and max(b.storeys for b in model.row()) > 1
     return True
 
 
@@ -71,7 +72,7 @@ def applies(model, owner, name: str) -> bool:
     """Whether input ``name`` of ``owner`` (``model`` or one of its buildings) enters the case as the other
     inputs stand."""
     if isinstance(owner, BuildingInputs):
-        return _storey_input_applies(model, owner, name)
+        return owner.number <= model.buildings_in_row and _storey_input_applies(model, owner, name)
     return _excitation_input_applies(model, name)
 
 

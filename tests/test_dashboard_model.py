@@ -54,6 +54,7 @@ def test_a_unit_switch_keeps_the_case_and_shows_mm_kn_t_or_the_papers_units():
 
 def test_more_storeys_keep_the_fundamental_period_and_say_so():
     model = PoundingModel()
+    model.floors_meet = "one floor each"  # each building's contact floor (aligned floors, the default, has none to move)
     model.building_1.storeys = 3
     case = model.build_case()
     assert case.buildings[0].n_storeys == 3 and case.buildings[0].periods[0] == pytest.approx(1.2, rel=1e-12)
@@ -193,6 +194,7 @@ def test_bad_combinations_are_named_by_the_case_files_key():
     model.B1 = 0.3  # above B2
     assert model.result is None and "excitation.B2" in model.error
     model.B1 = 0.085
+    model.floors_meet = "one floor each"
     model.building_2.contact_floor = 3
     assert "contact.levels" in model.error or model.building_2.contact_floor == 1
 
@@ -354,6 +356,7 @@ def test_each_building_has_its_own_inputs():
 
 def test_a_contact_floor_is_its_buildings():
     model = PoundingModel()
+    model.floors_meet = "one floor each"
     model.building_2.storeys = 4
     model.building_2.contact_floor = 3
     assert model.error == "" and model.result.case.contact.levels == (1, 3)

@@ -330,6 +330,10 @@ def _report(args) -> int:
     case = load_case(args.case)
     check_target(args.output, "--output", probe=True)  # before any work: "", a device, a folder, read-only are refused
     path = Path(args.output)
+    if len(case.contacts) > 1:  # several contacts: every contact listed
+        from pounding.cli.rows import row_report
+
+        return row_report(args, case, path, progress_bar, _report_provenance(args))
     # The plotting libraries load here only: every other command stays fast.
     from pounding.report import (
         MonteCarloPoint,

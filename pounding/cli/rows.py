@@ -101,3 +101,32 @@ def print_design_gaps(case, gaps, closed_form, failure: str | None, as_json: boo
     if failure is not None:
         print(f"closed form     n/a: {failure}")
     return 0
+
+
+def row_report(args, case, path, progress_bar, provenance) -> int:
+    """``pounding report`` of a case of several contacts: the closed form of every contact, its check against one
+    Monte Carlo study of the whole case (``--records`` records, else as many as the check's precision asks), and the
+    report listing every contact. ``--gap-points`` and ``--design-gap`` take a case of one contact."""
+    import dataclasses
+
+    from pounding.cli.arguments import capacity_newtons
+    from pounding.errors import ArgumentError
+    from pounding.report.contacts import compute_row_snapshot, with_row_check
+    from pounding.report.static import write_report
+    from pounding.simulation.plan import MonteCarloPlan
+
+    for flag, given in (("--gap-points", args.gap_points), ("--design-gap", args.design_gap)):
+        if given:
+            raise ArgumentError(flag, f"takes a case of one contact; this case has {len(case.contacts)} contacts "
+                                      "(the report lists each contact's gap for the target)")
+    seed = defaults.SEED if args.seed is None else args.seed
+    snapshot = compute_row_snapshot(case, seed=seed)
+    snapshot = dataclasses.replace(snapshot, capacity=capacity_newtons(args))
+    with progress_bar() as progress:
+        snapshot = with_row_check(snapshot, MonteCarloPlan(args.records or None, seed, progress=progress))
+    write_report(path, snapshot, units=args.units, field="--output", provenance=provenance)
+    if args.json:
+        print(json.dumps({"report": str(path), **snapshot.estimate.to_dict(), "check": snapshot.check.to_dict()}))
+    else:
+        print(f"wrote {path} ({path.stat().st_size / 1e6:.1f} MB)")
+    return 0

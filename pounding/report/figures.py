@@ -230,10 +230,10 @@ crowd into the impacts, and the plots need no more to show the loops."""
 
 
 def _plotted_steps(history: TimeHistory) -> np.ndarray:
-    """Indices of the steps drawn: every step in contact (and its neighbours,
+    """Indices of the steps drawn: every step in contact at any contact (and its neighbours,
     so each pounding spike keeps its shape), and an even selection of the rest."""
     n = history.time.size
-    contact = np.flatnonzero(history.contact_force > 0)
+    contact = np.flatnonzero(np.any(history.contact_forces > 0, axis=1))  # in contact at any contact
     around = np.concatenate([contact - 1, contact, contact + 1])
     even = np.linspace(0, n - 1, min(n, PLOTTED_STEPS)).astype(np.int64)
     return np.unique(np.clip(np.concatenate([around, even]), 0, n - 1))

@@ -58,16 +58,18 @@ def input_rows(case: Case, units: str = "SI", terms: dict | None = None) -> list
             if storey.damping is not None:
                 rows.append((where + "damping coefficient", _number(u.from_si(storey.damping, force=1, length=-1)),
                              u.label(force=1, length=-1, time=1)))
-    c = case.contact
-    exponent = c.stiffness_exponent
-    rows += [
-        "Contact",
-        ("contact law", c.model, ""),
-        ("gap", _number(c.gap / d.length_scale), d.length_unit),
-        ("contact stiffness", _number(u.from_si(c.stiffness, force=1, length=-exponent)), u.label(force=1, length=-exponent)),
-        ("coefficient of restitution e", f"{c.restitution:g}", "-"),
-        ("contact floors (building 1, building 2)", f"{c.levels[0]}, {c.levels[1]}", "-"),
-    ]
+    several = len(case.contacts) > 1
+    for number, c in enumerate(case.contacts, start=1):
+        exponent = c.stiffness_exponent
+        (left, right), where = c.between, f"contact {number}: " if several else ""
+        rows += [
+            f"Contact {number}: buildings {left}-{right}, floors {c.levels[0]}/{c.levels[1]}" if several else "Contact",
+            (where + "contact law", c.model, ""),
+            (where + "gap", _number(c.gap / d.length_scale), d.length_unit),
+            (where + "contact stiffness", _number(u.from_si(c.stiffness, force=1, length=-exponent)), u.label(force=1, length=-exponent)),
+            (where + "coefficient of restitution e", f"{c.restitution:g}", "-"),
+            (where + f"contact floors (building {left}, building {right})", f"{c.levels[0]}, {c.levels[1]}", "-"),
+        ]
     rows.append("Excitation")
     rows += _excitation_rows(case, units, terms)
     return rows

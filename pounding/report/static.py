@@ -158,10 +158,19 @@ def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None,
     (:func:`~.summary.with_check`: on the records of a study at the case's gap, else as many as its precision asks);
     with a capacity (``snapshot.capacity``), the gap sized to it and its Monte Carlo on the same records
     (:func:`~.summary.with_capacity_check`)."""
-    snapshot = with_capacity_check(with_check(snapshot))
+    from pounding.report.contacts import RowSnapshot
+
+    if not isinstance(snapshot, RowSnapshot):
+        snapshot = with_capacity_check(with_check(snapshot))
     case = snapshot.case
     provenance = provenance or case_provenance_from_name(case)
     title = report_title(case, provenance, title)
+    head = (f"<header><h1>{html.escape(title)}</h1>{_made_html(provenance)}{_provenance_html(case, provenance)}"
+            f'<p class="report-note"><i>{REPORT_NOTE}</i></p></header>')
+    if isinstance(snapshot, RowSnapshot):  # several contacts: every contact listed (pounding.report.row_report)
+        from pounding.report.row_report import row_report_body
+
+        return _page(title, *row_report_body(snapshot, units, head))
     terms = engineering_terms(case)
     history_note = (
         f"Hysteresis and pounding force: record {snapshot.record} of the study seeded {snapshot.seed}."
@@ -170,9 +179,7 @@ def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None,
     )
     figures, script, library = figures_html(report_figures(snapshot, units))
     body = (
-        f"<header><h1>{html.escape(title)}</h1>{_made_html(provenance)}{_provenance_html(case, provenance)}"
-        f'<p class="report-note"><i>{REPORT_NOTE}</i></p></header>'
-        '<section class="summary"><h2>1. Summary</h2>' + summary_html(snapshot, units) + "</section>"
+        head + '<section class="summary"><h2>1. Summary</h2>' + summary_html(snapshot, units) + "</section>"
         '<section class="inputs"><h2>2. Inputs</h2>' + changes_html(provenance) + inputs_html(case, units, terms) + "</section>"
         '<section class="results"><h2>3. Results in detail</h2>'
         + result_html(snapshot, units, design_gap=snapshot.design_gap, check=snapshot.check)
@@ -180,10 +187,14 @@ def report_html(snapshot: Snapshot, units: str = "SI", title: str | None = None,
         '<section class="figures"><h2>4. Figures</h2>' + figures + "</section>"
         '<section class="method">' + method_notes(snapshot.estimate.accuracy_regime) + "</section>"
     )
+    return _page(title, body, script, f"<style>{REPORT_CSS}{RESULT_CSS}</style>{library}")
+
+
+def _page(title: str, body: str, script: str, head: str) -> str:
+    """One HTML document: ``head`` (styles, Bokeh's library), ``body`` (the report) and the plots' ``script``."""
     page = (
         f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8"><title>{html.escape(title)}</title>'
-        f'<meta name="generator" content="pounding {html.escape(__version__)}">'
-        f"<style>{REPORT_CSS}{RESULT_CSS}</style>{library}</head>"
+        f'<meta name="generator" content="pounding {html.escape(__version__)}">{head}</head>'
         f'<body><main class="report">{body}</main>{script}</body></html>\n'
     )
     return without_external(page)
@@ -202,9 +213,10 @@ def write_report(path: str | os.PathLike, snapshot: Snapshot | Case, units: str 
     ----------
     path : str or PathLike
         The HTML file to write.
-    snapshot : Snapshot or Case
-        What to report (:func:`~.snapshot.compute_snapshot`). Without its Monte Carlo check (``snapshot.check``)
-        the check is run here (:func:`~.summary.with_check`; about a second for the presets).
+    snapshot : Snapshot, RowSnapshot or Case
+        What to report (:func:`~.snapshot.compute_snapshot`; a case of several contacts:
+        :func:`~.contacts.compute_row_snapshot`, every contact listed). Without its Monte Carlo check
+        (``snapshot.check``) the check is run here (:func:`~.summary.with_check`; about a second for the presets).
     units : str
         "SI" or "kgf-cm-s": the units every number is shown in.
     title : str, optional
@@ -232,7 +244,11 @@ def write_report(path: str | os.PathLike, snapshot: Snapshot | Case, units: str 
         Both are checked before the report is computed (a full disk excepted).
     """
     check_target(path, field, probe=True)
-    if isinstance(snapshot, Case):
+    if isinstance(snapshot, Case) and len(snapshot.contacts) > 1:
+        from pounding.report.contacts import compute_row_snapshot
+
+        snapshot = compute_row_snapshot(snapshot)
+    elif isinstance(snapshot, Case):
         snapshot = compute_snapshot(snapshot)
     text = report_html(snapshot, units, title, provenance)
     return write_atomic(path, text, field)
