@@ -21,7 +21,7 @@ from pounding.closed_form.estimator import estimate
 from pounding.closed_form.row import RowEstimate
 from pounding.display_units import display
 from pounding.errors import SimulationError
-from pounding.report.figures import _plotted_steps
+from pounding.report.figures import plotted_steps
 from pounding.simulation.monte_carlo import TimeHistory, simulate_record
 from pounding.simulation.plan import MonteCarloPlan
 from pounding.studies.check import RowCheck, check_row
@@ -183,7 +183,7 @@ class ContactHistory:
             self.source.data = {"time": [], "force": [], "label": [], "colour": []}
             return
         contacts = snapshot.case.contacts
-        steps = _plotted_steps(history)
+        steps = plotted_steps(history)
         time = history.time[steps]
         self.source.data = {
             "time": [time] * len(contacts),

@@ -183,7 +183,7 @@ class Figures:
         _refill(src["psd_ground"], omega=snapshot.omega, ground=snapshot.psd_ground / ls**2)
         _refill(src["psd_velocity"], omega=snapshot.omega, velocity=velocity / vs**2)
         history = snapshot.history
-        shown = None if history is None else _plotted_steps(history)
+        shown = None if history is None else plotted_steps(history)
         for b in (1, 2):
             if history is None:
                 _refill(src[f"hysteresis{b}"], drift=[], force=[], equivalent=[])
@@ -229,7 +229,7 @@ PLOTTED_STEPS = 1500
 crowd into the impacts, and the plots need no more to show the loops."""
 
 
-def _plotted_steps(history: TimeHistory) -> np.ndarray:
+def plotted_steps(history: TimeHistory) -> np.ndarray:
     """Indices of the steps drawn: every step in contact at any contact (and its neighbours,
     so each pounding spike keeps its shape), and an even selection of the rest."""
     n = history.time.size
