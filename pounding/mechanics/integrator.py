@@ -247,8 +247,8 @@ def integrate_record(record, time_step, y0, floors, below, contacts, contact_flo
     forces, stage_forces, approach_velocity = np.zeros(n_contacts), np.zeros(n_contacts), np.zeros(n_contacts)
     rates, delta_new = np.zeros(n_contacts), np.zeros(n_contacts)
     summary[:] = 0.0
-    peaks = summary[RECORD_COLUMNS:].reshape((n_contacts, CONTACT_COLUMNS))
-    left, right = contact_floors[:, 0], contact_floors[:, 1]
+    peaks = np.zeros((n_contacts, CONTACT_COLUMNS))  # contiguous here, copied into ``summary`` at the end
+    left, right = contact_floors[:, 0].copy(), contact_floors[:, 1].copy()
     onset = np.zeros(n_contacts, dtype=np.bool_)
     for c in range(n_contacts):
         peaks[c, S_DISPLACEMENT_MAX_1] = abs(y[left[c]])
@@ -398,6 +398,7 @@ def integrate_record(record, time_step, y0, floors, below, contacts, contact_flo
     summary[S_STATUS] = status
     summary[S_TIME] = t
     summary[S_STEPS] = steps
+    summary[RECORD_COLUMNS:] = peaks.ravel()
     return stored
 
 
