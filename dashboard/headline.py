@@ -13,6 +13,7 @@ import html
 import math
 from collections.abc import Callable
 
+from pounding.closed_form.regimes import CHECK_ADVICE
 from pounding.display_units import display
 from pounding.errors import ConvergenceError
 from pounding.report import monte_carlo_check
@@ -45,7 +46,7 @@ HEADLINE_CSS = """
 """
 
 _ADVICE = (
-    ("Check it with `pounding estimate --check`.", "Check it with the Monte Carlo tab.", "monte_carlo"),
+    (CHECK_ADVICE, "Check it with the Monte Carlo tab.", "monte_carlo"),
     ("Use `pounding simulate --design-gap", "Use the Monte Carlo design gap (Monte Carlo tab).", "design_gap"),
 )
 

@@ -47,3 +47,43 @@ def test_the_single_contact_report_is_unchanged_in_its_parts(tmp_path):
 
     text = report_html(compute_snapshot(load_case("section5-T2-0.4")))
     assert 'class="contacts"' not in text and "<th colspan=\"3\">Contact</th>" in text and "contact 1:" not in text
+
+
+def test_a_report_with_its_check_drops_the_warnings_advice_to_run_it(tmp_path):
+    """The check the warnings advise ("Check it with `pounding estimate --check`") stands above them in a report that
+    ran it: the advice is dropped, the warning kept; the estimate's own warnings still carry it."""
+    import html
+    import re
+
+    from pounding.cli.commands import main
+    from pounding.closed_form.regimes import CHECK_ADVICE, without_check_advice
+
+    from .test_rows import ROW, row
+
+    case_file = tmp_path / "row.toml"
+    case_file.write_text(ROW)
+    path = tmp_path / "r.html"
+    assert main(["report", str(case_file), "-o", str(path), "--records", "8"]) == 0
+    page = path.read_text()
+    warnings = estimate(row()).warnings
+    assert any(CHECK_ADVICE in w for w in warnings)  # the test has teeth
+    for warning in warnings:
+        assert html.escape(without_check_advice(warning)) in page
+    shown = re.findall(r'<p class="warning">(.*?)</p>', page, flags=re.DOTALL)
+    assert len(shown) == len(warnings) and not any(html.escape(CHECK_ADVICE) in w for w in shown)
+
+
+def test_a_one_contact_report_with_its_check_drops_the_advice_too(tmp_path):
+    import html
+    import re
+
+    from pounding.cli.commands import main
+    from pounding.closed_form.regimes import CHECK_ADVICE, without_check_advice
+
+    preset = "section5-T2-0.4-G0x4pi2"
+    warnings = estimate(preset).warnings
+    assert any(CHECK_ADVICE in w for w in warnings)  # the test has teeth
+    path = tmp_path / "r.html"
+    assert main(["report", preset, "-o", str(path), "--records", "8"]) == 0
+    shown = re.findall(r'<p class="warning">(.*?)</p>', path.read_text(), flags=re.DOTALL)
+    assert [html.unescape(w).replace("\u26a0 ", "") for w in shown] == [without_check_advice(w) for w in warnings]

@@ -27,7 +27,9 @@ from pounding.mechanics.contact import undamped_peak_force
 from pounding.units import STANDARD_GRAVITY
 
 __all__ = [
+    "CHECK_ADVICE",
     "ROW_KINDS",
+    "without_check_advice",
     "error_span",
     "row_kind",
     "row_measured_range",
@@ -325,9 +327,14 @@ _WHERE = {
     "large residual": "where storeys are near elastic-perfectly plastic",
     "rare": f"where the gap exceeds {_SPREAD}",
 }
-_CHECK = "Check it with `pounding estimate --check`."
+CHECK_ADVICE = "Check it with `pounding estimate --check`."
 """The advice of a warning where the closed form may be off: the Monte Carlo of the same case, beside it
 (the dashboard's headline, dashboard/headline.py, says it in the page's terms)."""
+
+
+def without_check_advice(warning: str) -> str:
+    """``warning`` without :data:`CHECK_ADVICE`: where the Monte Carlo check stands beside it already."""
+    return warning.replace(CHECK_ADVICE, "").strip()
 
 
 def assess(pair, gap: float, sigma_x: float, required_gap: float, target_probability: float) -> Assessment:
@@ -343,20 +350,20 @@ def assess(pair, gap: float, sigma_x: float, required_gap: float, target_probabi
     if spectrum == "clough-penzien" and yielding:
         drift = accuracy_data()["required_gap"]["clough-penzien, yielding"]
         warnings.append("A building yields and the spectrum has no low frequencies: the estimate misses its plastic "
-                        f"drift; up to {100 * drift['max']:.0f} % of records pounded at the gap for 95 %. {_CHECK}")
+                        f"drift; up to {100 * drift['max']:.0f} % of records pounded at the gap for 95 %. {CHECK_ADVICE}")
     table = force_table(pair.case, pair.yielding)
     if share > RESIDUAL_SHARE_LIMIT:
         warnings.append(f"Storeys near elastic-perfectly plastic sway {100 * share:.0f} % more than their linear equivalent: the "
-                        f"force may be off by {_bounded_span(_force_entry(table, 'large residual', yielding))}. {_CHECK}")
+                        f"force may be off by {_bounded_span(_force_entry(table, 'large residual', yielding))}. {CHECK_ADVICE}")
     if bandwidth < NARROW_BAND_LIMIT:
         warnings.append("The buildings sway at nearly one frequency: the force may be off by "
-                        f"{_bounded_span(_force_entry(table, 'narrow band', yielding))}. {_CHECK}")
+                        f"{_bounded_span(_force_entry(table, 'narrow band', yielding))}. {CHECK_ADVICE}")
     if MODERATE_GAP * sigma_x < gap <= sigma_x:
         warnings.append(f"The gap is 0.5 to 1 times {_SPREAD}: the force may be off by "
-                        f"{_bounded_span(_force_entry(table, 'moderate gap', yielding))}. {_CHECK}")
+                        f"{_bounded_span(_force_entry(table, 'moderate gap', yielding))}. {CHECK_ADVICE}")
     if gap > sigma_x:
         warnings.append(f"Only the largest swings close this gap (it exceeds {_SPREAD}): the force may be off by "
-                        f"{_bounded_span(measured)}. {_CHECK}")
+                        f"{_bounded_span(measured)}. {CHECK_ADVICE}")
     if required_gap > sigma_x:  # where pairs like this one were measured to pound more often than 1 - 0.95
         warning = _required_gap_warning(pair, spectrum, yielding, target_probability)
         if warning:
@@ -405,14 +412,14 @@ def extreme_warnings(pair, force: float, paper_force: float | None, velocity: fl
         cuts = (measured["cutoff_above_frequencies"], measured["cutoff_below_frequencies"])  # either side of the modes
         either = {"low": min(c["low"] for c in cuts), "high": max(c["high"] for c in cuts)}
         warnings.append(f"The records stop at {case.excitation.cutoff_frequency:.3g} rad/s, cutting {100 * share:.0f} % of the "
-                        f"relative velocity's power: the force may be off by {_bounded_span(either)}. {_CHECK}")
+                        f"relative velocity's power: the force may be off by {_bounded_span(either)}. {CHECK_ADVICE}")
     contact = case.contact
     if velocity > 0.0:
         impact = float(undamped_peak_force(contact, velocity, case.reduced_mass))
         penetration = (impact / contact.stiffness) ** (1.0 / contact.stiffness_exponent) / sigma_x
         if penetration > SOFT_CONTACT_LIMIT:
             warnings.append(f"The contact is soft: the largest impact would penetrate {penetration:.2g} times {_SPREAD}; "
-                            f"measured {_bounded_span(measured['soft_contact'])} off, more if softer. {_CHECK}")
+                            f"measured {_bounded_span(measured['soft_contact'])} off, more if softer. {CHECK_ADVICE}")
     weight = min(case.contact_masses) * STANDARD_GRAVITY
     largest = max(force, paper_force or 0.0)
     if largest > FORCE_WEIGHT_LIMIT * weight:

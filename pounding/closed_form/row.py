@@ -33,7 +33,7 @@ from pounding.errors import CaseError
 from pounding.closed_form.force_distribution import ForceDistribution, force_distribution_of
 from pounding.closed_form.linearization import linearize_row
 from pounding.closed_form.pair import LinearizedPair
-from pounding.closed_form.regimes import MeasuredRange, error_span, measured_range, row_measured_range
+from pounding.closed_form.regimes import CHECK_ADVICE, MeasuredRange, error_span, measured_range, row_measured_range
 
 __all__ = ["SAFE_SIDE", "RowEstimate", "contact_pairs", "force_distribution_and_accuracy", "largest_force_distribution",
            "safe_side_statement"]
@@ -134,10 +134,10 @@ class RowEstimate:
                 seen.setdefault(warning, []).append(str(number))
         own = () if self.accuracy.signable else (
             f"The largest force was measured {error_span(self.accuracy)} off Monte Carlo {self.accuracy.where}"
-            f"{', on the safe side' if _safe_side(self.accuracy) else ''}. Check it with `pounding estimate --check`.",)
+            f"{', on the safe side' if _safe_side(self.accuracy) else ''}. {CHECK_ADVICE}",)
         if not self.contact_accuracy.signable:  # the shielding the closed form leaves out (docs/theory.md, "Several contacts")
             own += (f"A contact beside one that pounds harder pounds less than its estimate says (up to "
-                    f"{1 + self.contact_accuracy.high:.0f} times less, measured). Check it with `pounding estimate --check`.",)
+                    f"{1 + self.contact_accuracy.high:.0f} times less, measured). {CHECK_ADVICE}",)
         return own + tuple(warning if len(numbers) == len(self.contacts) else
                            f"Contact{'s' if len(numbers) > 1 else ''} {', '.join(numbers)}: {warning}"
                            for warning, numbers in seen.items())

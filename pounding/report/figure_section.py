@@ -45,7 +45,7 @@ class ReportFigure:
     plots: tuple
 
 
-def _fixed(plots: tuple) -> tuple:
+def fixed_width(plots: tuple) -> tuple:
     """Plots of fixed size sharing :data:`FIGURE_WIDTH`: printed as drawn, never wider than the page."""
     width = (FIGURE_WIDTH - _GAP * (len(plots) - 1)) // len(plots)
     for plot in plots:
@@ -101,7 +101,7 @@ def report_figures(snapshot: Snapshot, units: str = "SI") -> list[ReportFigure]:
             f"One record of many: the expected extreme over all records is {d.force(e.force_expected)}.",
             (plots.contact,)))
     for figure in shown:
-        _fixed(figure.plots)
+        fixed_width(figure.plots)
     return shown
 
 

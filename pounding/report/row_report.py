@@ -9,6 +9,7 @@ import html
 import math
 
 from pounding.case.engineering import engineering_terms
+from pounding.closed_form.regimes import without_check_advice
 from pounding.display_units import display
 from pounding.report.card import RESULT_CSS
 from pounding.report.contacts import (
@@ -21,7 +22,7 @@ from pounding.report.contacts import (
     with_row_check,
 )
 from pounding.report.curve_charts import LEGEND_ROW, legend_below
-from pounding.report.figure_section import ReportFigure, _fixed, figures_html
+from pounding.report.figure_section import ReportFigure, fixed_width, figures_html
 from pounding.report.inputs_section import inputs_html
 from pounding.report.method_section import method_notes
 from pounding.report.print_css import REPORT_CSS
@@ -57,7 +58,8 @@ def row_summary_html(snapshot: RowSnapshot, units: str = "SI") -> str:
     cells = "".join(f'<tr><th>{html.escape(q)}</th><td class="number">{html.escape(v)}</td><td>{html.escape(n)}</td></tr>'
                     for q, v, n in rows)
     verdict = "" if check is None else f'<p class="check-verdict">{html.escape(row_check_sentence(check, units))}</p>'
-    warnings = "".join(f'<p class="warning">&#9888; {html.escape(w)}</p>' for w in e.warnings)
+    warnings = "".join(f'<p class="warning">&#9888; {html.escape(w if check is None else without_check_advice(w))}</p>'
+                       for w in e.warnings)  # with the check above them, their advice to run it is dropped
     return (f'<p class="governing">Governing: <b>{html.escape(governing_words(e))}</b> of {len(case.contacts)} contacts '
             f"between {len(case.buildings)} buildings.</p>{verdict}"
             '<table class="summary"><thead><tr><th>quantity</th><th>value</th><th>note</th></tr></thead><tbody>'
@@ -85,7 +87,7 @@ def _history_figure(snapshot: RowSnapshot, units: str) -> ReportFigure | None:
                       for c in range(len(snapshot.case.contacts)))
     return ReportFigure("Pounding force at each contact during one record",
                         f"Record {snapshot.record} of the study seeded {snapshot.seed}, every contact acting; "
-                        f"one line a contact. Peaks: {peaks}.", _fixed((history.figure,)))
+                        f"one line a contact. Peaks: {peaks}.", fixed_width((history.figure,)))
 
 
 def row_report_body(snapshot: RowSnapshot, units: str, head: str) -> tuple[str, str, str]:

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 from pounding import defaults
 from pounding.closed_form.estimator import Estimate
+from pounding.closed_form.regimes import without_check_advice
 from pounding.display_units import Display, display
 from pounding.report.snapshot import MonteCarloPoint, Snapshot
 from pounding.simulation.plan import MonteCarloPlan
@@ -227,8 +228,10 @@ def summary_html(snapshot: Snapshot, units: str = "SI") -> str:
             css = "verdict-within" if value == "agrees" else "verdict-outside"
         cells.append(f'<tr><th>{html.escape(quantity)}</th><td class="{css}">{html.escape(value)}</td>'
                      f"<td>{html.escape(note)}</td></tr>")
-    warnings = "".join(f'<p class="warning">&#9888; {html.escape(w)}</p>' for w in snapshot.estimate.warnings)
-    verdict = verdict_html(snapshot, units) if snapshot.check is not None else ""
+    checked = snapshot.check is not None  # the check the warnings advise stands above them: the advice is dropped
+    warnings = "".join(f'<p class="warning">&#9888; {html.escape(without_check_advice(w) if checked else w)}</p>'
+                       for w in snapshot.estimate.warnings)
+    verdict = verdict_html(snapshot, units) if checked else ""
     adequate = f'<p class="gap-adequate"><b>{html.escape(gap_sentence(snapshot, units))}</b></p>'
     if snapshot.capacity_check is not None:
         d = display(units)
