@@ -6,7 +6,7 @@ Build (warnings are errors, as in CI):
     python3 -m sphinx -W --keep-going -b html docs build/docs
 
 The HTML build also executes the teaching notebooks and writes them, with their figures, as
-``build/docs/notebooks/*.html`` (docs/notebook_pages.py; 70 to 90 s of the build on 2 shared cores, see
+``build/docs/notebooks/*.html`` (notebooks/export_pages.py; 70 to 90 s of the build on 2 shared cores, see
 :data:`NOTEBOOK_PAGES`).
 """
 
@@ -76,8 +76,8 @@ def _notebook_pages(app, exception):
         return
     from sphinx.util import logging
 
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
-    from notebook_pages import write_pages
+    sys.path.insert(0, str(ROOT / "notebooks"))
+    from export_pages import write_pages
 
     took = write_pages(Path(app.outdir) / NOTEBOOK_PAGES)
     logging.getLogger(__name__).info(f"notebooks executed into {NOTEBOOK_PAGES}/ in {sum(took.values()):.0f} s")

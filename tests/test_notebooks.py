@@ -5,7 +5,7 @@ A cell tagged ``interactive`` shows live Panel widgets (or the whole dashboard).
 check cell runs in the same kernel: it changes the lesson's input as a student would and compares the bound
 output with what the library itself gives for that input.
 
-The lessons run with ``PANEL_INLINE=1``, as docs/notebook_pages.py runs them for the site; exported to HTML the
+The lessons run with ``PANEL_INLINE=1``, as notebooks/export_pages.py runs them for the site; exported to HTML the
 same way, each opens in headless Chromium with the network cut, draws every plot and asks the network for nothing
 (its equations as MathML, Panel's style sheets written in).
 """
@@ -23,7 +23,7 @@ import nbformat
 import pytest
 from nbclient import NotebookClient
 
-from docs.notebook_pages import execute, html_page
+from notebooks.export_pages import execute, html_page
 from tests.browser import LOAD_TIMEOUT, offline
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -227,12 +227,12 @@ def _opens_the_dashboard(cells):
 
 NBCONVERT_TEMPLATE = ("https://cdnjs.cloudflare.com/ajax/libs/require.js/", "https://cdnjs.cloudflare.com/ajax/libs/mathjax/")
 """What plain nbconvert's page (the README's Jupyter-only export) asks of the network whatever the notebook holds;
-docs/notebook_pages.py's page does not."""
+notebooks/export_pages.py's page does not."""
 PANEL_CDN = re.compile(r"https://cdn\.holoviz\.org/panel/[\d.]+/dist/(.*\.css(\?v=[\d.]+)?|bundled/reactiveesm/es-module-shims.*)$")
 """What plain nbconvert's page with HoloViews outputs still asks of Panel's CDN with PANEL_INLINE=1 (measured with
 panel 1.9.4, holoviews 1.23): HoloViews renders its plots without Panel's inlining of stylesheets, so they link
 Panel's layout and theme CSS, and ``hv.extension`` links an ES-module shim. The plots draw without them;
-docs/notebook_pages.py writes the style sheets in and drops the shim's address (Panel's script has it already)."""
+notebooks/export_pages.py writes the style sheets in and drops the shim's address (Panel's script has it already)."""
 NETWORK_TAG = re.compile(r"<(?:script|link|img|iframe)\b[^>]*\b(?:src|href)\s*=\s*[\"']?\s*(?:https?:)?//", re.I)
 """A tag of the page that loads something from the network."""
 
@@ -325,7 +325,7 @@ SMALL_LESSON = [
 
 @pytest.fixture(scope="module")
 def small_page(tmp_path_factory):
-    """:data:`SMALL_LESSON` executed and exported as docs/notebook_pages.py does for the site and the README."""
+    """:data:`SMALL_LESSON` executed and exported as notebooks/export_pages.py does for the site and the README."""
     path = tmp_path_factory.mktemp("lesson") / "small.ipynb"
     nbformat.write(nbformat.v4.new_notebook(cells=SMALL_LESSON), path)
     return html_page(execute(path, timeout=120))
@@ -344,7 +344,7 @@ def test_the_exported_page_names_nothing_on_the_network(small_page):
 
 
 def test_tex_that_cannot_be_read_stays_as_written():
-    from docs.notebook_pages import mathml
+    from notebooks.export_pages import mathml
 
     assert mathml(r"\frac{1}{2}").startswith("<math")
     assert mathml("x^^") == "$x^^$" and mathml("x^^", "block") == "$$x^^$$"  # never a failed page

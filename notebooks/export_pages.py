@@ -4,8 +4,8 @@ The Sphinx build (``docs/conf.py``) writes them into the site's ``notebooks/`` f
 the lessons can be read with their plots without running Jupyter; the repository keeps the notebooks without
 outputs. By hand::
 
-    python3 docs/notebook_pages.py build/notebooks                # all six
-    python3 docs/notebook_pages.py build/notebooks 3_random_vibration   # one
+    python3 notebooks/export_pages.py build/notebooks                # all six
+    python3 notebooks/export_pages.py build/notebooks 3_random_vibration   # one
 
 Each notebook runs in a fresh ``python3`` kernel in ``notebooks/`` (two at a time) with ``PANEL_INLINE=1``, so that
 ``pn.extension()`` writes BokehJS and Panel's JS into the notebook and the page draws its plots offline. The page
@@ -31,7 +31,7 @@ import time
 import warnings
 from pathlib import Path
 
-NOTEBOOKS = Path(__file__).resolve().parent.parent / "notebooks"
+NOTEBOOKS = Path(__file__).resolve().parent
 TIMEOUT = 600
 """[s] The longest a cell may run."""
 
